@@ -1,0 +1,1 @@
+#include "craterkit/chronology/conventions.hpp"

@@ -1,0 +1,45 @@
+#pragma once
+// Atomic output: content is written to a temporary file beside the target and renamed over it only
+// once complete, so a killed run never leaves a truncated file under the final name.
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <unistd.h>
+
+namespace craterkit {
+
+// Temporary name in the same directory (rename is atomic only within one file system).
+inline std::filesystem::path temporary_sibling(const std::filesystem::path& target) {
+  auto name = target.filename().string();
+  return target.parent_path() / ("." + name + ".tmp." + std::to_string(::getpid()));
+}
+
+// Calls write(tmp_path) to produce the file, then renames it to target. On any exception the
+// temporary file is removed and the exception propagates; target is untouched.
+inline void write_atomically(const std::filesystem::path& target,
+                             const std::function<void(const std::filesystem::path&)>& write) {
+  const auto tmp = temporary_sibling(target);
+  try {
+    write(tmp);
+    std::filesystem::rename(tmp, target);
+  } catch (...) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw;
+  }
+}
+
+inline void write_text_atomically(const std::filesystem::path& target, std::string_view text) {
+  write_atomically(target, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot open " + tmp.string() + " for writing");
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    out.flush();
+    if (!out) throw std::runtime_error("failed writing " + target.string());
+  });
+}
+
+}  // namespace craterkit

@@ -1,0 +1,92 @@
+#pragma once
+// Particle storage: structure-of-arrays, one contiguous std::vector per field, owned by Particles.
+// Phases take the arrays they need (spans), so what each phase reads and writes is visible in its
+// signature. Fields for solid mechanics and porosity are always present (zero / one when unused)
+// so that materials slot in without changing the layout.
+//
+// Every field is registered in for_each_field(), which is the single list used by sorting along the
+// space-filling curve, by snapshots and by checkpoints: adding a field means adding one line there.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace craterkit::sph {
+
+// Per-particle state bits.
+enum ParticleFlag : std::uint8_t {
+  particle_active = 0,
+  particle_fixed = 1u << 0,    // boundary particle: takes part in sums, never moves
+  particle_ejected = 1u << 1,  // removed from the hydrodynamics (recorded as ejecta)
+};
+
+struct Particles {
+  // Identity and material.
+  std::vector<std::uint64_t> id;        // persistent across sorting and restarts
+  std::vector<std::uint16_t> material;  // index into the run's material table
+  std::vector<std::uint8_t> flags;      // ParticleFlag bits
+
+  // Kinematics.
+  std::vector<double> x, y, z;     // position, m
+  std::vector<double> vx, vy, vz;  // velocity, m/s
+
+  // Thermodynamic state.
+  std::vector<double> mass;              // kg
+  std::vector<double> density;           // bulk density rho, kg/m^3
+  std::vector<double> specific_energy;   // u, J/kg
+  std::vector<double> smoothing_length;  // h, m (kernel support 2h)
+  std::vector<double> pressure;          // bulk pressure P, Pa (derived each step by the EOS)
+  std::vector<double> sound_speed;       // c, m/s (derived each step by the EOS)
+
+  // Solid mechanics: symmetric traceless deviatoric stress S (Pa); S_zz = -(S_xx + S_yy).
+  std::vector<double> stress_xx, stress_xy, stress_xz, stress_yy, stress_yz;
+  std::vector<double> total_strain;  // accumulated total (deviatoric) strain, dimensionless
+  std::vector<double> distention;    // P-alpha alpha = rho_matrix / rho >= 1 (1 when non-porous)
+
+  // Artificial viscosity coefficient per particle (for switches; constant alpha when none).
+  std::vector<double> viscosity_alpha;
+
+  [[nodiscard]] std::size_t size() const { return x.size(); }
+  void resize(std::size_t n);        // new entries: zeros, distention 1, flags active
+  void reserve(std::size_t n);
+
+  // Reorders every registered field: new index k takes the particle at old index order[k].
+  void permute(std::span<const std::uint32_t> order);
+
+  // Visits every field as (name, vector&). Names are the snapshot/checkpoint dataset names.
+  template <class Visitor>
+  void for_each_field(Visitor&& visit) {
+    visit(std::string_view{"id"}, id);
+    visit(std::string_view{"material"}, material);
+    visit(std::string_view{"flags"}, flags);
+    visit(std::string_view{"x"}, x);
+    visit(std::string_view{"y"}, y);
+    visit(std::string_view{"z"}, z);
+    visit(std::string_view{"vx"}, vx);
+    visit(std::string_view{"vy"}, vy);
+    visit(std::string_view{"vz"}, vz);
+    visit(std::string_view{"mass"}, mass);
+    visit(std::string_view{"density"}, density);
+    visit(std::string_view{"specific_energy"}, specific_energy);
+    visit(std::string_view{"smoothing_length"}, smoothing_length);
+    visit(std::string_view{"pressure"}, pressure);
+    visit(std::string_view{"sound_speed"}, sound_speed);
+    visit(std::string_view{"stress_xx"}, stress_xx);
+    visit(std::string_view{"stress_xy"}, stress_xy);
+    visit(std::string_view{"stress_xz"}, stress_xz);
+    visit(std::string_view{"stress_yy"}, stress_yy);
+    visit(std::string_view{"stress_yz"}, stress_yz);
+    visit(std::string_view{"total_strain"}, total_strain);
+    visit(std::string_view{"distention"}, distention);
+    visit(std::string_view{"viscosity_alpha"}, viscosity_alpha);
+  }
+  template <class Visitor>
+  void for_each_field(Visitor&& visit) const {
+    const_cast<Particles*>(this)->for_each_field([&](std::string_view name, const auto& field) {
+      visit(name, field);
+    });
+  }
+};
+
+}  // namespace craterkit::sph

@@ -1,0 +1,29 @@
+#include "craterkit/sph/particles.hpp"
+
+#include <cassert>
+
+namespace craterkit::sph {
+
+void Particles::resize(std::size_t n) {
+  const std::size_t old = size();
+  for_each_field([n](std::string_view, auto& field) { field.resize(n); });
+  for (std::size_t i = old; i < n; ++i) {
+    distention[i] = 1.0;
+    flags[i] = particle_active;
+  }
+}
+
+void Particles::reserve(std::size_t n) {
+  for_each_field([n](std::string_view, auto& field) { field.reserve(n); });
+}
+
+void Particles::permute(std::span<const std::uint32_t> order) {
+  assert(order.size() == size());
+  for_each_field([&order](std::string_view, auto& field) {
+    auto reordered = field;  // same type and size; one temporary per field, not per particle
+    for (std::size_t k = 0; k < order.size(); ++k) reordered[k] = field[order[k]];
+    field.swap(reordered);
+  });
+}
+
+}  // namespace craterkit::sph
