@@ -3,9 +3,10 @@
 //
 // Two parameterisations of the same function are supported; published constants only make sense
 // in their own form:
-//   Holsapple (1993):  pi_R = K1 { pi2 pi4^((6nu-2-mu)/(3mu)) + [K2 pi3 pi4^((6nu-2)/(3mu))]^((2+mu)/2) }^(-mu/(2+mu))
+//   Holsapple (1993):
+//     pi_R = K1 { pi2 pi4^((6nu-2-mu)/(3mu)) + [K2 pi3 pi4^((6nu-2)/(3mu))]^((2+mu)/2) }^(-mu/(2+mu))
 //   Housen & Holsapple (2011):
-//                      pi_R = H1 pi4^((2+mu-6nu)/(3(2+mu))) { pi2 + (H1/H2)^((2+mu)/mu) pi4^nu pi3^((2+mu)/2) }^(-mu/(2+mu))
+//     pi_R = H1 pi4^((2+mu-6nu)/(3(2+mu))) { pi2 + (H1/H2)^((2+mu)/mu) pi4^nu pi3^((2+mu)/2) }^(-mu/(2+mu))
 // with K1 = H1 and K2 = (H1/H2)^(2/mu). R is the apparent crater radius at the pre-impact level.
 // All quantities SI.
 #include <string>
@@ -13,12 +14,13 @@
 namespace craterkit::scaling {
 
 enum class Form {
-  holsapple,       // constants K1, K2
-  hh2011,          // constants H1, H2 (Housen & Holsapple 2011)
+  holsapple,  // constants K1, K2
+  hh2011,     // constants H1, H2 (Housen & Holsapple 2011)
 };
 
-std::string to_string(Form form);          // "holsapple" | "hh2011"
-Form form_from_string(const std::string&);  // throws InputError naming the allowed values
+std::string to_string(Form form);                    // "holsapple" | "hh2011"
+Form form_from_string(const std::string&);           // throws InputError naming the allowed values
+std::string coefficient_name(Form form, int which);  // which = 1 or 2: "K1"/"K2" or "H1"/"H2"
 
 // One constant set. coefficient_1/2 are K1/K2 in the Holsapple form and H1/H2 in the HH2011 form.
 struct ScalingLaw {
@@ -33,9 +35,9 @@ struct ScalingLaw {
 ScalingLaw convert(const ScalingLaw& law, Form to);
 
 struct Impactor {
-  double radius = 0.0;   // a, m
-  double density = 0.0;  // delta, kg/m^3
-  double velocity = 0.0; // U, m/s (normal component for oblique impacts)
+  double radius = 0.0;    // a, m
+  double density = 0.0;   // delta, kg/m^3
+  double velocity = 0.0;  // U, m/s (normal component for oblique impacts)
 };
 
 struct Target {

@@ -47,6 +47,14 @@ struct Particles {
   // Artificial viscosity coefficient per particle (for switches; constant alpha when none).
   std::vector<double> viscosity_alpha;
 
+  // Time derivatives from the last rate evaluation (rates.hpp). They are state, not scratch: the
+  // second-order integrator (integrator.hpp) reuses them in the next step, so checkpoints must
+  // hold them for a restart to continue bitwise.
+  std::vector<double> acceleration_x, acceleration_y, acceleration_z;  // dv/dt, m/s^2
+  std::vector<double> density_rate;                                    // drho/dt, kg/m^3/s
+  std::vector<double> energy_rate;                                     // du/dt, W/kg
+  std::vector<double> viscosity_alpha_rate;                            // dalpha/dt, 1/s
+
   [[nodiscard]] std::size_t size() const { return x.size(); }
   void resize(std::size_t n);        // new entries: zeros, distention 1, flags active
   void reserve(std::size_t n);
@@ -80,6 +88,12 @@ struct Particles {
     visit(std::string_view{"total_strain"}, total_strain);
     visit(std::string_view{"distention"}, distention);
     visit(std::string_view{"viscosity_alpha"}, viscosity_alpha);
+    visit(std::string_view{"acceleration_x"}, acceleration_x);
+    visit(std::string_view{"acceleration_y"}, acceleration_y);
+    visit(std::string_view{"acceleration_z"}, acceleration_z);
+    visit(std::string_view{"density_rate"}, density_rate);
+    visit(std::string_view{"energy_rate"}, energy_rate);
+    visit(std::string_view{"viscosity_alpha_rate"}, viscosity_alpha_rate);
   }
   template <class Visitor>
   void for_each_field(Visitor&& visit) const {

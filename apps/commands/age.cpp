@@ -1,0 +1,331 @@
+// craterkit age: model (crater-retention) ages of a counted surface unit per cohesion, by the Poisson
+// likelihood of Michael et al. (2016), with the classical cumulative fit for comparison
+// (physics.md sec. 7; chronology/model_age.hpp). --plot draws the standard figure through
+// scripts/plot_age.py.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <nlohmann/json.hpp>
+
+#include "command_registry.hpp"
+#include "craterkit/chronology/body.hpp"
+#include "craterkit/chronology/crater_counts.hpp"
+#include "craterkit/chronology/model_age.hpp"
+#include "craterkit/chronology/population.hpp"
+#include "craterkit/chronology/production.hpp"
+#include "craterkit/chronology/scaled_production.hpp"
+#include "craterkit/common/atomic_file.hpp"
+#include "craterkit/common/data_path.hpp"
+#include "craterkit/common/input_error.hpp"
+#include "scaling_flags.hpp"
+
+namespace {
+
+namespace ck = craterkit::chronology;
+using craterkit::InputError;
+
+struct AgeOptions {
+  craterkit::cli::ScalingFlags scaling;
+  std::string counts;
+  std::string body = "ryugu";
+  std::vector<double> cohesion;
+  std::string population = "main_belt_approx_bottke2005";
+  std::string region = "main_belt";
+  double rim_to_apparent = ck::DiameterConvention{}.rim_to_apparent;
+  std::string cross_section = "target+impactor";
+  std::optional<std::string> speed_table;
+  double impactor_density = 2600.0;
+  std::optional<double> min_diameter;
+  std::optional<double> max_diameter;
+  std::optional<double> equilibrium;
+  std::optional<std::string> plot;
+  bool json = false;
+};
+
+// Runs /usr/bin/python3 with arguments (no shell); returns its exit status.
+int run_python(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  std::string python = "/usr/bin/python3";
+  argv.push_back(python.data());
+  std::vector<std::string> copy = args;
+  for (auto& a : copy) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("cannot start /usr/bin/python3 (fork failed)");
+  if (pid == 0) {
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) throw std::runtime_error("waiting for /usr/bin/python3 failed");
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+std::filesystem::path plot_script() {
+  if (const char* env = std::getenv("CRATERKIT_PLOT_AGE_SCRIPT"); env != nullptr && *env != '\0') return env;
+  // Source tree: <repo>/data and <repo>/scripts; an installation may put scripts/ inside the data directory.
+  const auto data = craterkit::data_directory();
+  const auto beside = data.parent_path() / "scripts" / "plot_age.py";
+  return std::filesystem::exists(beside) ? beside : data / "scripts" / "plot_age.py";
+}
+
+// Checks python + matplotlib before any computation, so that a missing plotting stack fails early.
+void check_plotting_available(const std::filesystem::path& script) {
+  if (!std::filesystem::exists("/usr/bin/python3")) {
+    throw std::runtime_error(
+        "--plot needs /usr/bin/python3 with matplotlib, and /usr/bin/python3 does not exist");
+  }
+  if (!std::filesystem::exists(script)) {
+    throw std::runtime_error("--plot: plotting script " + script.string() +
+                             " not found (set CRATERKIT_PLOT_AGE_SCRIPT to scripts/plot_age.py)");
+  }
+  if (run_python({"-c", "import matplotlib"}) != 0) {
+    throw std::runtime_error(
+        "--plot needs matplotlib for /usr/bin/python3 (Debian: python3-matplotlib); no figure written");
+  }
+}
+
+std::vector<double> downsample(const std::vector<double>& v, std::size_t n) {
+  if (v.size() <= n) return v;
+  std::vector<double> out;
+  for (std::size_t i = 0; i < n; ++i) out.push_back(v[i * (v.size() - 1) / (n - 1)]);
+  return out;
+}
+
+void run_age(const AgeOptions& o) {
+  std::filesystem::path script;
+  if (o.plot) {
+    const auto ext = std::filesystem::path(*o.plot).extension();
+    if (ext != ".png") throw InputError("--plot " + *o.plot + ": the figure must be a .png file");
+    const auto dir = std::filesystem::absolute(*o.plot).parent_path();
+    if (!std::filesystem::is_directory(dir)) {
+      throw InputError("--plot " + *o.plot + ": directory " + dir.string() + " does not exist");
+    }
+    script = plot_script();
+    check_plotting_available(script);
+  }
+  auto inputs = craterkit::cli::resolve_scaling_flags(o.scaling);
+  const ck::Body body = ck::load_body(o.body);
+  const auto region = ck::collision_region_from_string(o.region);
+  if (o.cohesion.empty()) throw InputError("--cohesion needs at least one value (Pa)");
+  for (double y : o.cohesion) {
+    if (!(y >= 0.0) || !std::isfinite(y))
+      throw InputError(fmt::format("--cohesion {} must be a finite number >= 0 Pa", y));
+  }
+  if (o.speed_table && o.scaling.velocity)
+    throw InputError("--velocity and --speed-table cannot both be given");
+  if (!(o.impactor_density > 0.0)) throw InputError("--impactor-density must be > 0 kg/m^3");
+  const ck::CraterCounts counts = ck::read_crater_counts(o.counts);
+
+  std::optional<ck::SpeedDistribution> speeds;
+  if (o.speed_table) speeds = ck::read_speed_distribution(*o.speed_table);
+  if (o.scaling.velocity) speeds = ck::single_speed(*o.scaling.velocity);
+  auto setup = ck::production_setup_for_body(body, region, ck::load_population(o.population),
+                                             speeds ? &*speeds : nullptr);
+  setup.diameter.rim_to_apparent = o.rim_to_apparent;
+  ck::validate(setup.diameter, "--rim-to-apparent");
+  if (o.cross_section == "target+impactor")
+    setup.cross_section = ck::CrossSection::target_plus_impactor;
+  else if (o.cross_section == "target")
+    setup.cross_section = ck::CrossSection::target_only;
+  else
+    throw InputError("--cross-section '" + o.cross_section +
+                     "' is not known; allowed: target+impactor, target");
+
+  ck::AgeFitOptions fit;
+  if (o.min_diameter) {
+    if (!(*o.min_diameter > 0.0))
+      throw InputError(fmt::format("--min-diameter {} must be > 0 m", *o.min_diameter));
+    fit.min_diameter = *o.min_diameter;
+  }
+  if (o.max_diameter) fit.max_diameter = *o.max_diameter;
+  if (o.equilibrium) {
+    fit.cap.enabled = true;
+    fit.cap.fraction_of_geometric = *o.equilibrium;
+    ck::validate(fit.cap);
+  }
+
+  craterkit::scaling::Target target;
+  target.density = o.scaling.target_density.value_or(body.bulk_density);
+  target.gravity = o.scaling.gravity.value_or(body.surface_gravity);
+  const double impactor_density = o.scaling.impactor_density.value_or(o.impactor_density);
+
+  // Observed cumulative SFD (per km^2) for the figure.
+  nlohmann::json observed = nlohmann::json::array();
+  if (counts.binned()) {
+    for (const auto& b : counts.bins)
+      observed.push_back({b.diameter, b.cumulative_count / counts.area * 1e6});
+  } else {
+    std::vector<std::pair<double, double>> sorted;
+    for (std::size_t i = 0; i < counts.diameters.size(); ++i)
+      sorted.emplace_back(counts.diameters[i], counts.fractions[i]);
+    std::sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a.first > b.first; });
+    double running = 0.0;
+    for (const auto& [d, f] : sorted) {
+      running += f;
+      observed.push_back({d, running / counts.area * 1e6});
+    }
+  }
+  double d_lo = std::numeric_limits<double>::infinity(), d_hi = 0.0;
+  for (const auto& p : observed) {
+    d_lo = std::min(d_lo, p[0].get<double>());
+    d_hi = std::max(d_hi, p[0].get<double>());
+  }
+
+  nlohmann::json ages = nlohmann::json::array();
+  for (double y : o.cohesion) {
+    target.strength = y;
+    const auto production =
+        ck::production_function(setup, ck::scaled_impactor_radius(inputs.law, target, impactor_density));
+    const auto est = ck::fit_model_age(counts, production, fit);
+    // Isochron at the median age over the plotted diameters.
+    nlohmann::json isochron = nlohmann::json::array();
+    const double lo = 0.7 * std::min(d_lo, est.min_diameter), hi = 1.5 * std::max(d_hi, est.min_diameter);
+    for (int i = 0; i <= 60; ++i) {
+      const double d = lo * std::pow(hi / lo, i / 60.0);
+      isochron.push_back({d, ck::expected_cumulative_density(fit.cap, d, est.median, production(d)) * 1e6});
+    }
+    ages.push_back({{"cohesion", y},
+                    {"median_yr", est.median},
+                    {"mode_yr", est.mode},
+                    {"sigma1_yr", {est.sigma1_low, est.sigma1_high}},
+                    {"sigma2_yr", {est.sigma2_low, est.sigma2_high}},
+                    {"reaches_max_age", est.reaches_max_age},
+                    {"cumulative_fit_age_yr", est.cumulative_fit_age},
+                    {"cumulative_fit_sigma_yr", est.cumulative_fit_sigma},
+                    {"craters_in_range", est.craters_in_range},
+                    {"fit_min_diameter", est.min_diameter},
+                    {"fit_max_diameter", std::isinf(est.max_diameter) ? nlohmann::json(nullptr)
+                                                                      : nlohmann::json(est.max_diameter)},
+                    {"production_rate_at_min_diameter_per_km2_per_yr", production(est.min_diameter) * 1e6},
+                    {"isochron", isochron},
+                    {"age_grid_yr", downsample(est.age_grid, 400)},
+                    {"density_per_yr", downsample(est.density, 400)}});
+  }
+
+  nlohmann::json out;
+  out["counts"] = {{"source", counts.source},
+                   {"area_km2", counts.area * 1e-6},
+                   {"binned", counts.binned()},
+                   {"craters", counts.binned() ? counts.bins.front().cumulative_count
+                                               : static_cast<double>(counts.diameters.size())}};
+  out["scaling_law"] = {{"source", inputs.law_source},
+                        {"form", craterkit::scaling::to_string(inputs.law.form)},
+                        {"coefficient_1", inputs.law.coefficient_1},
+                        {"coefficient_2", inputs.law.coefficient_2},
+                        {"mu", inputs.law.mu},
+                        {"nu", inputs.law.nu}};
+  out["conventions"] = {
+      {"body", body.name},
+      {"region", ck::to_string(region)},
+      {"population", setup.population.name},
+      {"target_density", target.density},
+      {"gravity", target.gravity},
+      {"impactor_density", impactor_density},
+      {"impact_speed", ck::mean_speed(setup.speeds)},
+      {"rim_to_apparent", setup.diameter.rim_to_apparent},
+      {"cross_section", o.cross_section},
+      {"equilibrium_fraction",
+       fit.cap.enabled ? nlohmann::json(fit.cap.fraction_of_geometric) : nlohmann::json(nullptr)},
+      {"prior", fmt::format("uniform in age on [0, {:g}] yr", fit.max_age)}};
+  out["observed_cumulative_per_km2"] = observed;
+  out["ages"] = ages;
+
+  if (o.plot) {
+    // The data file is written atomically beside the figure; the script writes the PNG atomically too.
+    const std::filesystem::path png(*o.plot);
+    const auto data_path = craterkit::temporary_sibling(png).string() + ".json";
+    craterkit::write_text_atomically(data_path, out.dump());
+    const int status = run_python({script.string(), data_path, png.string()});
+    std::error_code ignored;
+    std::filesystem::remove(data_path, ignored);
+    if (status != 0)
+      throw std::runtime_error(fmt::format("plot_age.py failed (exit status {}); no figure written", status));
+  }
+
+  if (o.json) {
+    for (auto& a : out["ages"]) {
+      a.erase("isochron");  // figure data stays out of the printed JSON unless asked for
+    }
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::cout << fmt::format(
+      "# craterkit age: {} ({} craters{}, {:.4g} km^2), body {} ({}), law {}, population {}\n", counts.source,
+      out["counts"]["craters"].get<double>(), counts.binned() ? " binned" : "", counts.area * 1e-6, body.name,
+      ck::to_string(region), inputs.law_source, setup.population.name);
+  std::cout << "# Poisson-likelihood age (Michael et al. 2016): median and 1-/2-sigma bounds; classical "
+               "cumulative fit\n";
+  std::cout << fmt::format("{:>12} {:>8} {:>12} {:>25} {:>25} {:>20}\n", "cohesion_Pa", "N_fit", "median_Myr",
+                           "1-sigma_Myr", "2-sigma_Myr", "cumulative_fit_Myr");
+  for (const auto& a : out["ages"]) {
+    std::cout << fmt::format(
+        "{:>12.4g} {:>8.4g} {:>12.4g} {:>25} {:>25} {:>20}{}\n", a["cohesion"].get<double>(),
+        a["craters_in_range"].get<double>(), a["median_yr"].get<double>() / 1e6,
+        fmt::format("[{:.4g}, {:.4g}]", a["sigma1_yr"][0].get<double>() / 1e6,
+                    a["sigma1_yr"][1].get<double>() / 1e6),
+        fmt::format("[{:.4g}, {:.4g}]", a["sigma2_yr"][0].get<double>() / 1e6,
+                    a["sigma2_yr"][1].get<double>() / 1e6),
+        fmt::format("{:.4g} +- {:.2g}", a["cumulative_fit_age_yr"].get<double>() / 1e6,
+                    a["cumulative_fit_sigma_yr"].get<double>() / 1e6),
+        a["reaches_max_age"].get<bool>() ? "  (density reaches the maximum age: a lower bound)" : "");
+  }
+  if (o.plot) std::cout << "# figure: " << *o.plot << "\n";
+}
+
+void add_age_command(CLI::App& parent) {
+  auto* sub = parent.add_subcommand("age", "Model ages of a crater-counted surface unit, one per cohesion");
+  auto o = std::make_shared<AgeOptions>();
+  sub->add_option("COUNTS", o->counts,
+                  "Crater counts: .csv (diameters or binned cumulative), craterstats .diam, CraterTools .scc")
+      ->required();
+  craterkit::cli::add_scaling_flags(*sub, o->scaling);
+  sub->add_option("--body", o->body, "Target body: ryugu, bennu or a body .toml file (gives rho, g, U, P_i)")
+      ->capture_default_str();
+  sub->add_option("--cohesion", o->cohesion,
+                  "Cohesions Y of the scaling law, Pa (comma-separated); one age each")
+      ->delimiter(',')
+      ->required();
+  sub->add_option("--population", o->population, "Impactor population in data/populations/ or a .toml file")
+      ->capture_default_str();
+  sub->add_option("--region", o->region, "Collision environment of the body: main_belt or near_earth")
+      ->capture_default_str();
+  sub->add_option("--rim-to-apparent", o->rim_to_apparent,
+                  "Rim-to-rim over apparent crater diameter (scaling gives the apparent radius)")
+      ->capture_default_str();
+  sub->add_option("--cross-section", o->cross_section,
+                  "Impact cross-section: target+impactor ((R_t+a)^2, Bottke et al. 1994) or target (R_t^2)")
+      ->capture_default_str();
+  sub->add_option(
+      "--speed-table", o->speed_table,
+      "CSV of impact speeds (speed_m_s or speed_km_s) and weights to average over, instead of one speed");
+  sub->add_option("--min-diameter", o->min_diameter,
+                  "Smallest rim diameter of the fit range, m (default: smallest counted)");
+  sub->add_option("--max-diameter", o->max_diameter, "Upper end of the fit range, m (default: none)");
+  sub->add_option("--equilibrium", o->equilibrium,
+                  "Cap counts at equilibrium: this fraction of the geometric saturation 1.54 D^-2 (Gault "
+                  "1970), e.g. 0.05");
+  sub->add_option("--plot", o->plot,
+                  "Write the standard figure (cumulative SFD with isochrons, age densities) to this PNG");
+  sub->add_flag("--json", o->json, "Print JSON instead of a table");
+  sub->footer(
+      "Target density and gravity default to the body's; --impactor-density defaults to 2600 kg/m^3 and the "
+      "impact speed to the body's mean speed for --region. Ages in years in JSON, Myr in the table.");
+  sub->callback([o] { run_age(*o); });
+}
+
+const bool registered = craterkit::cli::register_command({"age", 40, &add_age_command});
+
+}  // namespace

@@ -1,0 +1,192 @@
+// craterkit rates: impactor radius and relative crater-formation rate for each crater diameter and
+// cohesion (physics.md sec. 7; chronology/relative_rates.hpp).
+#include <cmath>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "command_registry.hpp"
+#include "craterkit/chronology/body.hpp"
+#include "craterkit/chronology/population.hpp"
+#include "craterkit/chronology/production.hpp"
+#include "craterkit/chronology/scaled_production.hpp"
+#include "craterkit/common/input_error.hpp"
+#include "scaling_flags.hpp"
+
+namespace {
+
+namespace ck = craterkit::chronology;
+using craterkit::InputError;
+
+struct RatesOptions {
+  craterkit::cli::ScalingFlags scaling;
+  std::string body = "ryugu";
+  std::vector<double> cohesion;
+  std::vector<double> diameters;
+  std::optional<double> q;
+  std::optional<std::string> population;
+  std::string region = "main_belt";
+  double rim_to_apparent = ck::DiameterConvention{}.rim_to_apparent;
+  std::string cross_section = "target+impactor";
+  std::optional<std::string> speed_table;
+  double impactor_density = 2600.0;
+  bool json = false;
+};
+
+void run_rates(const RatesOptions& o) {
+  auto inputs = craterkit::cli::resolve_scaling_flags(o.scaling);
+  const ck::Body body = ck::load_body(o.body);
+  const auto region = ck::collision_region_from_string(o.region);
+  if (o.cohesion.empty()) throw InputError("--cohesion needs at least one value (Pa)");
+  for (double y : o.cohesion) {
+    if (!(y >= 0.0) || !std::isfinite(y))
+      throw InputError(fmt::format("--cohesion {} must be a finite number >= 0 Pa", y));
+  }
+  if (o.diameters.empty()) throw InputError("--diameters needs at least one crater diameter (m)");
+  for (double d : o.diameters) {
+    if (!(d > 0.0) || !std::isfinite(d))
+      throw InputError(fmt::format("--diameters {} must be a finite number > 0 m", d));
+  }
+  if (o.q && o.population)
+    throw InputError("--q and --population cannot both be given: choose one impactor population");
+  if (o.speed_table && o.scaling.velocity)
+    throw InputError("--velocity and --speed-table cannot both be given");
+  if (!(o.impactor_density > 0.0)) throw InputError("--impactor-density must be > 0 kg/m^3");
+
+  ck::ImpactorPopulation population;
+  if (o.q) {
+    if (!(*o.q < -1.0))
+      throw InputError(fmt::format("--q {} must be < -1 (differential slope of dN/da)", *o.q));
+    population = ck::power_law_population(*o.q);
+  } else {
+    population = ck::load_population(o.population.value_or("main_belt_approx_bottke2005"));
+  }
+  std::optional<ck::SpeedDistribution> speeds;
+  if (o.speed_table) speeds = ck::read_speed_distribution(*o.speed_table);
+  if (o.scaling.velocity) speeds = ck::single_speed(*o.scaling.velocity);
+  auto setup = ck::production_setup_for_body(body, region, population, speeds ? &*speeds : nullptr);
+  setup.diameter.rim_to_apparent = o.rim_to_apparent;
+  ck::validate(setup.diameter, "--rim-to-apparent");
+  if (o.cross_section == "target+impactor")
+    setup.cross_section = ck::CrossSection::target_plus_impactor;
+  else if (o.cross_section == "target")
+    setup.cross_section = ck::CrossSection::target_only;
+  else
+    throw InputError("--cross-section '" + o.cross_section +
+                     "' is not known; allowed: target+impactor, target");
+
+  craterkit::scaling::Target target;
+  target.density = o.scaling.target_density.value_or(body.bulk_density);
+  target.gravity = o.scaling.gravity.value_or(body.surface_gravity);
+  const double impactor_density = o.scaling.impactor_density.value_or(o.impactor_density);
+  const double speed = ck::mean_speed(setup.speeds);
+  const bool absolute = !o.q.has_value();
+
+  nlohmann::json rows = nlohmann::json::array();
+  for (double D : o.diameters) {
+    double first_rate = 0.0;
+    for (std::size_t k = 0; k < o.cohesion.size(); ++k) {
+      target.strength = o.cohesion[k];
+      const auto law = ck::scaled_impactor_radius(inputs.law, target, impactor_density);
+      const double a = law(ck::apparent_radius_from_rim_diameter(D, setup.diameter), speed);
+      const double rate = ck::crater_production_rate(setup, law, D);
+      if (k == 0) first_rate = rate;
+      nlohmann::json row = {{"crater_diameter", D},
+                            {"cohesion", o.cohesion[k]},
+                            {"impactor_radius", a},
+                            {"relative_rate", rate / first_rate}};
+      row["production_rate_per_km2_per_yr"] = absolute ? nlohmann::json(rate * 1e6) : nlohmann::json(nullptr);
+      rows.push_back(row);
+    }
+  }
+
+  if (o.json) {
+    nlohmann::json out = {{"rows", rows}};
+    out["scaling_law"] = {{"source", inputs.law_source},
+                          {"form", craterkit::scaling::to_string(inputs.law.form)},
+                          {"coefficient_1", inputs.law.coefficient_1},
+                          {"coefficient_2", inputs.law.coefficient_2},
+                          {"mu", inputs.law.mu},
+                          {"nu", inputs.law.nu}};
+    out["conventions"] = {
+        {"body", body.name},
+        {"region", ck::to_string(region)},
+        {"population", population.name},
+        {"target_density", target.density},
+        {"gravity", target.gravity},
+        {"impactor_density", impactor_density},
+        {"impact_speed", speed},
+        {"speed_distribution_entries", setup.speeds.speed.size()},
+        {"rim_to_apparent", setup.diameter.rim_to_apparent},
+        {"cross_section", o.cross_section},
+        {"diameters", "rim-to-rim, m"},
+        {"impactor_radius", "m, at the (mean) impact speed"},
+        {"relative_rate", "rate of craters larger than the diameter, relative to the first cohesion"}};
+    std::cout << out.dump(2) << "\n";
+    return;
+  }
+  std::cout << fmt::format("# craterkit rates: {} ({}), {} collisions, population {}\n", body.name,
+                           inputs.law_source, ck::to_string(region), population.name);
+  std::cout << fmt::format(
+      "# rho = {} kg/m^3, g = {} m/s^2, delta = {} kg/m^3, U = {} m/s, D_rim/D_app = {}\n", target.density,
+      target.gravity, impactor_density, speed, setup.diameter.rim_to_apparent);
+  std::cout << fmt::format("{:>16} {:>12} {:>18} {:>16} {:>22}\n", "crater_diam_m", "cohesion_Pa",
+                           "impactor_radius_m", "relative_rate", "rate_per_km2_per_yr");
+  for (const auto& r : rows) {
+    const std::string absolute_rate =
+        r["production_rate_per_km2_per_yr"].is_null()
+            ? std::string("-")
+            : fmt::format("{:.4e}", r["production_rate_per_km2_per_yr"].get<double>());
+    std::cout << fmt::format("{:>16.4g} {:>12.4g} {:>18.4e} {:>16.4e} {:>22}\n",
+                             r["crater_diameter"].get<double>(), r["cohesion"].get<double>(),
+                             r["impactor_radius"].get<double>(), r["relative_rate"].get<double>(),
+                             absolute_rate);
+  }
+}
+
+void add_rates_command(CLI::App& parent) {
+  auto* sub = parent.add_subcommand("rates",
+                                    "Impactor radius and crater-formation rate relative to the first "
+                                    "cohesion, per crater diameter and cohesion");
+  auto o = std::make_shared<RatesOptions>();
+  craterkit::cli::add_scaling_flags(*sub, o->scaling);
+  sub->add_option("--body", o->body, "Target body: ryugu, bennu or a body .toml file (gives rho, g, U, P_i)")
+      ->capture_default_str();
+  sub->add_option("--cohesion", o->cohesion,
+                  "Cohesions Y of the scaling law, Pa (comma-separated); rates are relative to the first")
+      ->delimiter(',')
+      ->required();
+  sub->add_option("--diameters", o->diameters, "Rim-to-rim crater diameters, m (comma-separated)")
+      ->delimiter(',')
+      ->required();
+  sub->add_option("--q", o->q, "Single power-law impactor population dN/da ~ a^q (relative rates only)");
+  sub->add_option(
+      "--population", o->population,
+      "Impactor population in data/populations/ or a .toml file (default main_belt_approx_bottke2005)");
+  sub->add_option("--region", o->region, "Collision environment of the body: main_belt or near_earth")
+      ->capture_default_str();
+  sub->add_option("--rim-to-apparent", o->rim_to_apparent,
+                  "Rim-to-rim over apparent crater diameter (scaling gives the apparent radius)")
+      ->capture_default_str();
+  sub->add_option("--cross-section", o->cross_section,
+                  "Impact cross-section: target+impactor ((R_t+a)^2, Bottke et al. 1994) or target (R_t^2)")
+      ->capture_default_str();
+  sub->add_option(
+      "--speed-table", o->speed_table,
+      "CSV of impact speeds (speed_m_s or speed_km_s) and weights to average over, instead of one speed");
+  sub->add_flag("--json", o->json, "Print JSON {\"rows\": [...]} instead of a table");
+  sub->footer(
+      "Target density and gravity default to the body's; --impactor-density defaults to 2600 kg/m^3 and the "
+      "impact speed to the body's mean speed for --region. The impactor radius is given at the (mean) "
+      "speed.");
+  sub->callback([o] { run_rates(*o); });
+}
+
+const bool registered = craterkit::cli::register_command({"rates", 30, &add_rates_command});
+
+}  // namespace

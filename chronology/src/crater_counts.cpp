@@ -1,0 +1,224 @@
+#include "craterkit/chronology/crater_counts.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <sstream>
+
+#include "craterkit/common/input_error.hpp"
+#include "text_table.hpp"
+
+namespace craterkit::chronology {
+namespace {
+
+using detail::lower;
+using detail::parse_number;
+using detail::split_fields;
+using detail::trim;
+using detail::where;
+
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+void add_crater(CraterCounts& c, double diameter, double fraction, const std::string& path,
+                std::size_t line) {
+  if (!(diameter > 0.0))
+    throw InputError(where(path, line) + ": crater diameter " + num(diameter) + " must be > 0");
+  if (!(fraction > 0.0 && fraction <= 1.0)) {
+    throw InputError(where(path, line) + ": crater fraction " + num(fraction) + " must be in (0, 1]");
+  }
+  c.diameters.push_back(diameter);
+  c.fractions.push_back(fraction);
+}
+
+// "key = value [<unit>]" -> value, or nothing if the line is not that key.
+bool key_value(const std::string& line, const std::string& key, std::string& value) {
+  const auto eq = line.find('=');
+  if (eq == std::string::npos) return false;
+  if (lower(trim(line.substr(0, eq))) != lower(key)) return false;
+  value = trim(line.substr(eq + 1));
+  const auto unit = value.find('<');
+  if (unit != std::string::npos) value = trim(value.substr(0, unit));
+  return true;
+}
+
+// Craterstats table "crater = {col1, col2, ..." : column names after the brace.
+std::vector<std::string> brace_columns(const std::string& line) {
+  const auto brace = line.find('{');
+  std::vector<std::string> cols;
+  std::stringstream ss(line.substr(brace + 1));
+  std::string c;
+  while (std::getline(ss, c, ',')) cols.push_back(lower(trim(c)));
+  return cols;
+}
+
+// Shared reader of .diam and .scc: area key and the crater table in km.
+CraterCounts read_craterstats(const std::string& path, const std::string& area_key) {
+  const auto lines = detail::read_lines(path);
+  CraterCounts c;
+  c.source = path;
+  bool have_area = false, have_table = false;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string line = trim(lines[i]);
+    if (line.empty() || line[0] == '#') continue;
+    std::string value;
+    if (key_value(line, area_key, value)) {
+      const double km2 = parse_number(value, path, i, area_key);
+      if (!(km2 > 0.0))
+        throw InputError(where(path, i) + ": " + area_key + " = " + value + " km^2 must be > 0");
+      c.area = km2 * 1e6;
+      have_area = true;
+      continue;
+    }
+    if (line.find('{') == std::string::npos) continue;
+    const std::string name = lower(trim(line.substr(0, line.find('='))));
+    const bool is_crater_table = name == "crater";
+    const auto cols = brace_columns(line);
+    int d_col = -1, f_col = -1;
+    for (std::size_t k = 0; k < cols.size(); ++k) {
+      if (cols[k] == "diam" || cols[k] == "diameter") d_col = static_cast<int>(k);
+      if (cols[k] == "fraction") f_col = static_cast<int>(k);
+    }
+    if (is_crater_table && d_col < 0) {
+      throw InputError(where(path, i) + ": crater table has no 'diameter' (or 'diam') column");
+    }
+    std::size_t j = i + 1;
+    for (; j < lines.size(); ++j) {
+      const std::string row = trim(lines[j]);
+      if (row.empty() || row[0] == '#') continue;
+      if (row[0] == '}') break;
+      if (!is_crater_table) continue;
+      const auto fields = split_fields(row);
+      const int need = std::max(d_col, f_col) + 1;
+      if (static_cast<int>(fields.size()) < need) {
+        throw InputError(where(path, j) + ": expected at least " + std::to_string(need) + " columns, found " +
+                         std::to_string(fields.size()));
+      }
+      const double d_km = parse_number(fields[static_cast<std::size_t>(d_col)], path, j,
+                                       cols[static_cast<std::size_t>(d_col)]);
+      const double f =
+          f_col >= 0 ? parse_number(fields[static_cast<std::size_t>(f_col)], path, j, "fraction") : 1.0;
+      add_crater(c, d_km * 1000.0, f, path, j);
+    }
+    if (j >= lines.size())
+      throw InputError(where(path, i) + ": table '" + name + "' opened with '{' is never closed with '}'");
+    if (is_crater_table) have_table = true;
+    i = j;
+  }
+  if (!have_area) throw InputError(path + ": no '" + area_key + " = <km^2>' line found");
+  if (!have_table) throw InputError(path + ": no 'crater = {diameter ...' table found");
+  return c;
+}
+
+}  // namespace
+
+void validate(const CraterCounts& c) {
+  if (!(c.area > 0.0)) throw InputError(c.source + ": counting area " + num(c.area) + " m^2 must be > 0");
+  if (c.binned()) {
+    for (std::size_t i = 0; i < c.bins.size(); ++i) {
+      if (!(c.bins[i].diameter > 0.0) || !(c.bins[i].cumulative_count >= 0.0)) {
+        throw InputError(c.source + ": bin " + std::to_string(i + 1) + " needs diameter > 0 and count >= 0");
+      }
+      if (i > 0 && (!(c.bins[i].diameter > c.bins[i - 1].diameter) ||
+                    c.bins[i].cumulative_count > c.bins[i - 1].cumulative_count)) {
+        throw InputError(c.source + ": bin " + std::to_string(i + 1) +
+                         ": diameters must increase and cumulative counts must not increase");
+      }
+    }
+  } else if (c.diameters.size() != c.fractions.size()) {
+    throw InputError(c.source + ": every crater needs a fraction");
+  }
+}
+
+CraterCounts read_crater_csv(const std::string& path) {
+  const auto lines = detail::read_lines(path);
+  CraterCounts c;
+  c.source = path;
+  bool have_area = false, have_header = false;
+  int d_col = -1, f_col = -1, n_col = -1;
+  double unit = 1.0;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string line = trim(lines[i]);
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      std::string value;
+      const std::string body = trim(line.substr(1));
+      if (key_value(body, "area_km2", value) || key_value(body, "area_m2", value)) {
+        const bool km = lower(body).rfind("area_km2", 0) == 0;
+        const double a = parse_number(value, path, i, km ? "area_km2" : "area_m2");
+        if (!(a > 0.0)) throw InputError(where(path, i) + ": area = " + value + " must be > 0");
+        c.area = km ? a * 1e6 : a;
+        have_area = true;
+      }
+      continue;
+    }
+    const auto fields = split_fields(line);
+    if (!have_header) {
+      for (std::size_t k = 0; k < fields.size(); ++k) {
+        const std::string f = lower(fields[k]);
+        if (f == "diameter_m") d_col = static_cast<int>(k), unit = 1.0;
+        if (f == "diameter_km") d_col = static_cast<int>(k), unit = 1000.0;
+        if (f == "fraction") f_col = static_cast<int>(k);
+        if (f == "cumulative_count") n_col = static_cast<int>(k);
+      }
+      if (d_col < 0) {
+        throw InputError(where(path, i) +
+                         ": header must name a 'diameter_m' or 'diameter_km' column (found '" + line + "')");
+      }
+      have_header = true;
+      continue;
+    }
+    const int need = std::max({d_col, f_col, n_col}) + 1;
+    if (static_cast<int>(fields.size()) < need) {
+      throw InputError(where(path, i) + ": expected at least " + std::to_string(need) + " columns, found " +
+                       std::to_string(fields.size()));
+    }
+    const double d = parse_number(fields[static_cast<std::size_t>(d_col)], path, i, "diameter") * unit;
+    if (n_col >= 0) {
+      const double n = parse_number(fields[static_cast<std::size_t>(n_col)], path, i, "cumulative_count");
+      if (!(d > 0.0) || !(n >= 0.0))
+        throw InputError(where(path, i) + ": diameter must be > 0 and cumulative_count >= 0");
+      if (!c.bins.empty() && (!(d > c.bins.back().diameter) || n > c.bins.back().cumulative_count)) {
+        throw InputError(where(path, i) +
+                         ": bins must have increasing diameters and non-increasing cumulative counts");
+      }
+      c.bins.push_back({d, n});
+    } else {
+      const double f =
+          f_col >= 0 ? parse_number(fields[static_cast<std::size_t>(f_col)], path, i, "fraction") : 1.0;
+      add_crater(c, d, f, path, i);
+    }
+  }
+  if (!have_header) throw InputError(path + ": no header line with a 'diameter_m' or 'diameter_km' column");
+  if (!have_area)
+    throw InputError(path + ": no counting area; add a comment line '# area_km2 = X' or '# area_m2 = X'");
+  return c;
+}
+
+CraterCounts read_craterstats_diam(const std::string& path) {
+  return read_craterstats(path, "area");
+}
+CraterCounts read_crater_tools_scc(const std::string& path) {
+  return read_craterstats(path, "Total_area");
+}
+
+CraterCounts read_crater_counts(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError("crater count file '" + path + "' does not exist");
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  CraterCounts c;
+  if (ext == ".csv")
+    c = read_crater_csv(path);
+  else if (ext == ".diam")
+    c = read_craterstats_diam(path);
+  else if (ext == ".scc")
+    c = read_crater_tools_scc(path);
+  else
+    throw InputError("crater count file '" + path + "': extension '" + ext +
+                     "' is not known; allowed: .csv, .diam, .scc");
+  validate(c);
+  return c;
+}
+
+}  // namespace craterkit::chronology

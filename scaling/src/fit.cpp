@@ -1,0 +1,448 @@
+// Ceres fit of the point-source law to a table of impacts and crater radii (see fit.hpp).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <ceres/ceres.h>
+
+#include "craterkit/common/input_error.hpp"
+#include "craterkit/scaling/fit.hpp"
+#include "point_source_formula.hpp"
+
+namespace craterkit::scaling {
+namespace {
+
+// Internal parameter vector: ln c1, ln c2, mu, nu, ln Y (Y only used with a shared strength).
+constexpr int kC1 = 0;
+constexpr int kC2 = 1;
+constexpr int kMu = 2;
+constexpr int kNu = 3;
+constexpr int kY = 4;
+constexpr int kParameterCount = 5;
+constexpr double kMuLower = 1.0 / 3.0;
+constexpr double kMuUpper = 2.0 / 3.0;
+constexpr double kNuLower = 0.0;
+constexpr double kNuUpper = 1.0;
+
+bool is_log_parameter(int index) {
+  return index == kC1 || index == kC2 || index == kY;
+}
+
+// One row's data in the form the residual needs.
+struct RowTerms {
+  double ln_pi2 = 0.0;
+  bool has_gravity = false;
+  double ln_pi3 = 0.0;  // of the row's own strength
+  bool has_strength = false;
+  double ln_rho_u2 = 0.0;  // ln(rho U^2), to form pi3 from a shared Y
+  double ln_pi4 = 0.0;
+  double ln_length = 0.0;    // ln (m/rho)^(1/3)
+  double ln_observed = 0.0;  // ln R
+  double inverse_sigma = 1.0;
+};
+
+RowTerms row_terms(const ImpactRecord& row, bool weighted) {
+  RowTerms t;
+  const PiGroups pi = pi_groups(row.impactor, row.target);
+  t.has_gravity = pi.pi2 > 0.0;
+  t.ln_pi2 = t.has_gravity ? std::log(pi.pi2) : 0.0;
+  t.has_strength = pi.pi3 > 0.0;
+  t.ln_pi3 = t.has_strength ? std::log(pi.pi3) : 0.0;
+  t.ln_rho_u2 = std::log(row.target.density * row.impactor.velocity * row.impactor.velocity);
+  t.ln_pi4 = std::log(pi.pi4);
+  t.ln_length = std::log(impactor_mass(row.impactor) / row.target.density) / 3.0;
+  t.ln_observed = std::log(row.crater_radius);
+  if (weighted) t.inverse_sigma = row.crater_radius / *row.crater_radius_sigma;  // 1 / (sigma_R / R)
+  return t;
+}
+
+struct LogRadiusResidual {
+  Form form;
+  bool shared_strength;
+  RowTerms terms;
+
+  template <typename T>
+  bool operator()(const T* ln_c1, const T* ln_c2, const T* mu, const T* nu, const T* ln_y,
+                  T* residual) const {
+    detail::LogPiGroups<T> pi;
+    pi.ln_pi2 = T(terms.ln_pi2);
+    pi.has_gravity = terms.has_gravity;
+    pi.ln_pi4 = T(terms.ln_pi4);
+    if (shared_strength) {
+      pi.ln_pi3 = ln_y[0] - terms.ln_rho_u2;
+      pi.has_strength = true;
+    } else {
+      pi.ln_pi3 = T(terms.ln_pi3);
+      pi.has_strength = terms.has_strength;
+    }
+    const T ln_pi_r = detail::log_pi_R(form, ln_c1[0], ln_c2[0], mu[0], nu[0], pi);
+    residual[0] = (ln_pi_r + terms.ln_length - terms.ln_observed) * terms.inverse_sigma;
+    return true;
+  }
+};
+
+std::array<std::string, kParameterCount> parameter_names(Form form) {
+  return {coefficient_name(form, 1), coefficient_name(form, 2), "mu", "nu", "Y"};
+}
+
+// Builds the problem over `values` (internal parametrisation); fixed flags make blocks constant.
+void build_problem(ceres::Problem& problem, const std::vector<RowTerms>& rows, const FitOptions& options,
+                   std::array<double, kParameterCount>& values,
+                   const std::array<bool, kParameterCount>& held) {
+  for (int i = 0; i < kParameterCount; ++i) problem.AddParameterBlock(&values[i], 1);
+  for (const auto& terms : rows) {
+    auto* cost = new ceres::AutoDiffCostFunction<LogRadiusResidual, 1, 1, 1, 1, 1, 1>(
+        new LogRadiusResidual{options.form, options.shared_strength, terms});
+    problem.AddResidualBlock(cost, nullptr, &values[kC1], &values[kC2], &values[kMu], &values[kNu],
+                             &values[kY]);
+  }
+  for (int i = 0; i < kParameterCount; ++i) {
+    if (held[i]) problem.SetParameterBlockConstant(&values[i]);
+  }
+  if (!held[kMu]) {
+    problem.SetParameterLowerBound(&values[kMu], 0, kMuLower);
+    problem.SetParameterUpperBound(&values[kMu], 0, kMuUpper);
+  }
+  if (!held[kNu]) {
+    problem.SetParameterLowerBound(&values[kNu], 0, kNuLower);
+    problem.SetParameterUpperBound(&values[kNu], 0, kNuUpper);
+  }
+}
+
+double clamp_start(int index, double value) {
+  if (index == kMu) return std::clamp(value, kMuLower, kMuUpper);
+  if (index == kNu) return std::clamp(value, kNuLower, kNuUpper);
+  return value;
+}
+
+// Starting points: the first at typical published values, the rest spread uniformly (seeded) over
+// plausible ranges; fixed parameters keep their values.
+std::vector<std::array<double, kParameterCount>> starting_points(
+    const FitOptions& options, const std::array<double, kParameterCount>& base,
+    const std::array<bool, kParameterCount>& fixed, double ln_y_typical) {
+  std::mt19937_64 random(options.seed);
+  const bool holsapple = options.form == Form::holsapple;
+  // ranges of the internal parameters
+  const std::array<std::pair<double, double>, kParameterCount> range{{
+      {std::log(0.05), std::log(5.0)},
+      holsapple ? std::pair{std::log(1e-3), std::log(1e3)} : std::pair{std::log(0.05), std::log(5.0)},
+      {0.35, 0.65},
+      {0.2, 0.6},
+      {ln_y_typical - 5.0, ln_y_typical + 5.0},
+  }};
+  std::vector<std::array<double, kParameterCount>> points;
+  std::array<double, kParameterCount> typical = base;
+  const std::array<double, kParameterCount> defaults{
+      std::log(holsapple ? 1.0 : 0.6), std::log(holsapple ? 1.0 : 0.5), 0.45, 0.4, ln_y_typical};
+  for (int i = 0; i < kParameterCount; ++i) {
+    if (!fixed[i]) typical[i] = defaults[i];
+  }
+  points.push_back(typical);
+  while (static_cast<int>(points.size()) < options.starts) {
+    std::array<double, kParameterCount> point = base;
+    for (int i = 0; i < kParameterCount; ++i) {
+      std::uniform_real_distribution<double> uniform(range[i].first, range[i].second);
+      const double draw =
+          uniform(random);  // drawn for every parameter so the spread does not depend on `fixed`
+      if (!fixed[i]) point[i] = clamp_start(i, draw);
+    }
+    points.push_back(point);
+  }
+  return points;
+}
+
+// Natural scale of each internal parameter, for the profile test of determination.
+double determination_scale(int index) {
+  if (index == kMu) return (kMuUpper - kMuLower) / 2.0;
+  if (index == kNu) return 0.5;
+  return 1.0;  // ln c: a factor e
+}
+
+// Indices among `free` (into the parameter vector) whose direction the Jacobian cannot resolve.
+std::vector<int> null_space_parameters(ceres::Problem& problem, std::array<double, kParameterCount>& values,
+                                       const std::vector<int>& free) {
+  ceres::Problem::EvaluateOptions evaluate;
+  for (int index : free) evaluate.parameter_blocks.push_back(&values[index]);
+  ceres::CRSMatrix crs;
+  problem.Evaluate(evaluate, nullptr, nullptr, nullptr, &crs);
+  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row) {
+    for (int k = crs.rows[row]; k < crs.rows[row + 1]; ++k) jacobian(row, crs.cols[k]) = crs.values[k];
+  }
+  std::vector<int> out;
+  // Columns scaled to unit length, so that the test is about directions, not units.
+  for (int c = 0; c < jacobian.cols(); ++c) {
+    const double norm = jacobian.col(c).norm();
+    if (!(norm > 0.0)) {
+      out.push_back(free[c]);
+      jacobian.col(c).setZero();
+    } else {
+      jacobian.col(c) /= norm;
+    }
+  }
+  if (!out.empty()) return out;
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeThinV);
+  const auto& singular = svd.singularValues();
+  const double largest = singular.size() > 0 ? singular(0) : 0.0;
+  // For each (near-)null direction, the parameter that moves most along it; the caller holds it and
+  // looks again, so that a degeneracy among several parameters costs only one of them.
+  std::set<int> flagged;
+  for (int k = 0; k < singular.size(); ++k) {
+    if (singular(k) > 1e-7 * largest) continue;
+    Eigen::Index strongest = 0;
+    svd.matrixV().col(k).cwiseAbs().maxCoeff(&strongest);
+    flagged.insert(free[strongest]);
+  }
+  return {flagged.begin(), flagged.end()};
+}
+
+}  // namespace
+
+const FittedParameter& FitResult::parameter(const std::string& name) const {
+  for (const auto& p : parameters) {
+    if (p.name == name) return p;
+  }
+  throw std::out_of_range("fit has no parameter '" + name + "'");
+}
+
+ScalingLaw FitResult::law() const {
+  ScalingLaw law;
+  law.form = form;
+  law.coefficient_1 = parameters.at(kC1).value;
+  law.coefficient_2 = parameters.at(kC2).value;
+  law.mu = parameters.at(kMu).value;
+  law.nu = parameters.at(kNu).value;
+  return law;
+}
+
+std::optional<double> FitResult::strength() const {
+  if (!shared_strength) return std::nullopt;
+  return parameters.at(kY).value;
+}
+
+FitResult fit_scaling_law(const RadiiTable& table, const FitOptions& options) {
+  const auto names = parameter_names(options.form);
+  if (options.starts < 1) throw InputError("starts = " + std::to_string(options.starts) + ": must be >= 1");
+
+  // Fixed parameters, by name.
+  std::array<bool, kParameterCount> fixed{};
+  std::array<double, kParameterCount> base{std::log(1.0), std::log(1.0), 0.45, 0.4, 0.0};
+  for (const auto& [name, value] : options.fixed) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    const bool y_allowed = options.shared_strength;
+    if (it == names.end() || (name == "Y" && !y_allowed)) {
+      throw InputError("cannot fix '" + name + "': allowed names for the " + to_string(options.form) +
+                       " form are " + names[0] + ", " + names[1] + ", mu, nu" +
+                       (y_allowed ? ", Y" : " (and Y with a shared strength)"));
+    }
+    const int index = static_cast<int>(it - names.begin());
+    if (fixed[index]) throw InputError("parameter '" + name + "' is fixed twice");
+    const bool ok =
+        std::isfinite(value) && (index == kNu ? value >= 0.0 : value > 0.0) && (index != kMu || value <= 1.0);
+    if (!ok) {
+      throw InputError("fixed " + name + " = " + std::to_string(value) + " is not allowed: must be " +
+                       (index == kNu   ? "finite and >= 0"
+                        : index == kMu ? "in (0, 1]"
+                                       : "finite and > 0"));
+    }
+    fixed[index] = true;
+    base[index] = is_log_parameter(index) ? std::log(value) : value;
+  }
+  std::array<bool, kParameterCount> held = fixed;
+  if (!options.shared_strength) held[kY] = true;  // unused
+
+  const bool weighted = table.has_sigma();
+  std::vector<RowTerms> rows;
+  std::vector<double> strengths;
+  for (const auto& row : table.rows) {
+    const bool has_strength = options.shared_strength || row.target.strength > 0.0;
+    if (!(row.target.gravity > 0.0) && !has_strength) {
+      throw InputError(table.source + ":" + std::to_string(row.line) +
+                       ": gravity and strength are both 0, for which the law has no finite crater");
+    }
+    if (row.target.strength > 0.0) strengths.push_back(row.target.strength);
+    rows.push_back(row_terms(row, weighted));
+  }
+  int free_count = 0;
+  for (int i = 0; i < kParameterCount; ++i) free_count += held[i] ? 0 : 1;
+  if (free_count == 0) throw InputError("every parameter is fixed: nothing to fit");
+  if (static_cast<int>(rows.size()) <= free_count) {
+    throw InputError(table.source + ": " + std::to_string(rows.size()) + " rows for " +
+                     std::to_string(free_count) + " free parameters; at least " +
+                     std::to_string(free_count + 1) + " rows are required");
+  }
+  double ln_y_typical = 0.0;  // 1 Pa unless the table has strengths
+  if (!strengths.empty()) {
+    std::nth_element(strengths.begin(), strengths.begin() + strengths.size() / 2, strengths.end());
+    ln_y_typical = std::log(strengths[strengths.size() / 2]);
+  }
+
+  ceres::Solver::Options solver_options;
+  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.max_num_iterations = 500;
+  solver_options.function_tolerance = 1e-15;
+  solver_options.gradient_tolerance = 1e-15;
+  solver_options.parameter_tolerance = 1e-14;
+  solver_options.logging_type = ceres::SILENT;
+  solver_options.num_threads = 1;
+
+  FitResult result;
+  result.form = options.form;
+  result.shared_strength = options.shared_strength;
+  result.weighted = weighted;
+  result.starts = options.starts;
+
+  double best_cost = std::numeric_limits<double>::infinity();
+  std::array<double, kParameterCount> best{};
+  std::vector<double> costs;
+  for (auto start : starting_points(options, base, fixed, ln_y_typical)) {
+    ceres::Problem problem;
+    build_problem(problem, rows, options, start, held);
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver_options, &problem, &summary);
+    if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost)) continue;
+    costs.push_back(summary.final_cost);
+    if (summary.final_cost < best_cost) {
+      best_cost = summary.final_cost;
+      best = start;
+    }
+  }
+  if (!std::isfinite(best_cost)) throw std::runtime_error("the scaling fit failed from every starting point");
+  for (double cost : costs) {
+    if (cost - best_cost <= 1e-6 * std::max(best_cost, 1e-12)) ++result.starts_at_minimum;
+  }
+
+  // Residuals and chi^2 at the minimum.
+  ceres::Problem problem;
+  std::array<double, kParameterCount> values = best;
+  build_problem(problem, rows, options, values, held);
+  double chi2 = 0.0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    LogRadiusResidual functor{options.form, options.shared_strength, rows[i]};
+    double normalized = 0.0;
+    functor(&values[kC1], &values[kC2], &values[kMu], &values[kNu], &values[kY], &normalized);
+    FitResidual r;
+    r.line = table.rows[i].line;
+    r.observed = table.rows[i].crater_radius;
+    r.normalized = normalized;
+    r.log_residual = normalized / rows[i].inverse_sigma;
+    r.model = r.observed * std::exp(r.log_residual);
+    result.residuals.push_back(r);
+    chi2 += normalized * normalized;
+  }
+  result.chi2 = chi2;
+  result.dof = static_cast<int>(rows.size()) - free_count;
+  result.sigma_scale = weighted ? 1.0 : chi2 / result.dof;
+
+  // Which free parameters the data determine (see fit.hpp), then the covariance of those.
+  std::vector<bool> undetermined(kParameterCount, false);
+  const auto free_parameters = [&] {
+    std::vector<int> out;
+    for (int i = 0; i < kParameterCount; ++i) {
+      if (!held[i] && !undetermined[i]) out.push_back(i);
+    }
+    return out;
+  };
+  // 1. Rank: a direction the Jacobian cannot see at all.
+  for (int round = 0; round < kParameterCount; ++round) {
+    const auto free = free_parameters();
+    if (free.empty()) break;
+    const auto flagged = null_space_parameters(problem, values, free);
+    if (flagged.empty()) break;
+    for (int index : flagged) undetermined[index] = true;
+  }
+  // 2. Profile: chi^2 (others re-optimised) must rise by 4 (2 sigma) on both sides of the minimum within
+  //    a window of 4 natural scales; a side beyond a bound is not tested.
+  const auto profile_rises = [&](int index) {
+    const double window = 4.0 * determination_scale(index);
+    for (const double sign : {-1.0, 1.0}) {
+      std::array<double, kParameterCount> trial = values;
+      trial[index] = clamp_start(index, values[index] + sign * window);
+      if (std::abs(trial[index] - values[index]) < 1e-9) continue;
+      std::array<bool, kParameterCount> trial_held = held;
+      trial_held[index] = true;
+      for (int i = 0; i < kParameterCount; ++i) trial_held[i] = trial_held[i] || undetermined[i];
+      ceres::Problem profile;
+      build_problem(profile, rows, options, trial, trial_held);
+      ceres::Solver::Summary summary;
+      ceres::Solve(solver_options, &profile, &summary);
+      const double delta_chi2 = 2.0 * (summary.final_cost - best_cost) / result.sigma_scale;
+      if (!(delta_chi2 >= 4.0)) return false;
+    }
+    return true;
+  };
+  for (int index : free_parameters()) {
+    if (!profile_rises(index)) undetermined[index] = true;
+  }
+  // 3. Ceres covariance of the rest, with the undetermined ones held at their values (conditional).
+  std::vector<int> free;
+  Eigen::MatrixXd internal_covariance;
+  for (int round = 0; round < kParameterCount; ++round) {
+    free = free_parameters();
+    if (free.empty()) break;
+    for (int i = 0; i < kParameterCount; ++i) {
+      if (undetermined[i] && !problem.IsParameterBlockConstant(&values[i]))
+        problem.SetParameterBlockConstant(&values[i]);
+    }
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::DENSE_SVD;
+    covariance_options.null_space_rank = 0;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<const double*> blocks;
+    for (int index : free) blocks.push_back(&values[index]);
+    if (covariance.Compute(blocks, &problem)) {
+      internal_covariance.resize(static_cast<Eigen::Index>(free.size()),
+                                 static_cast<Eigen::Index>(free.size()));
+      covariance.GetCovarianceMatrix(blocks, internal_covariance.data());
+      internal_covariance *= result.sigma_scale;
+      break;
+    }
+    // Numerically singular although the tests above passed: give up the last free parameter.
+    undetermined[free.back()] = true;
+  }
+  free = free_parameters();
+
+  // Natural units: c = e^(ln c), so sigma_c = c sigma_ln c (first order).
+  std::array<double, kParameterCount> natural{};
+  for (int i = 0; i < kParameterCount; ++i)
+    natural[i] = is_log_parameter(i) ? std::exp(values[i]) : values[i];
+  const int parameter_count = options.shared_strength ? kParameterCount : kParameterCount - 1;
+  for (int i = 0; i < parameter_count; ++i) {
+    FittedParameter p;
+    p.name = names[i];
+    p.value = natural[i];
+    p.fixed = fixed[i];
+    p.determined = !undetermined[i];
+    p.sigma = p.fixed ? 0.0 : std::numeric_limits<double>::infinity();
+    if (i == kMu) p.at_bound = !p.fixed && (p.value - kMuLower < 1e-6 || kMuUpper - p.value < 1e-6);
+    if (i == kNu) p.at_bound = !p.fixed && (p.value - kNuLower < 1e-6 || kNuUpper - p.value < 1e-6);
+    result.parameters.push_back(p);
+  }
+  const auto n = static_cast<Eigen::Index>(free.size());
+  if (internal_covariance.rows() == n && n > 0) {
+    Eigen::VectorXd jacobian(n);
+    for (Eigen::Index k = 0; k < n; ++k) jacobian(k) = is_log_parameter(free[k]) ? natural[free[k]] : 1.0;
+    result.covariance = jacobian.asDiagonal() * internal_covariance * jacobian.asDiagonal();
+    result.correlation.resize(n, n);
+    for (Eigen::Index r = 0; r < n; ++r) {
+      for (Eigen::Index c = 0; c < n; ++c) {
+        result.correlation(r, c) =
+            result.covariance(r, c) / std::sqrt(result.covariance(r, r) * result.covariance(c, c));
+      }
+    }
+    for (Eigen::Index k = 0; k < n; ++k) {
+      result.correlation_names.push_back(names[free[k]]);
+      result.parameters[free[k]].sigma = std::sqrt(result.covariance(k, k));
+    }
+  }
+  return result;
+}
+
+}  // namespace craterkit::scaling

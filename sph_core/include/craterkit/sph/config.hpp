@@ -1,0 +1,69 @@
+#pragma once
+// The TOML configuration of `craterkit simulate` (examples: data/examples/*.toml). Every key has a
+// default (the struct initialisers below); unknown keys, wrong types and out-of-range values are
+// craterkit::InputError naming the key, the value and what is allowed.
+//
+//   [problem]    name, setup = "sedov" | "sod" | "plates"
+//   [sedov] / [sod] / [plates]   the set-up parameters (setups.hpp); only the chosen one may appear
+//   [run]        end_time (s), max_steps (0: no limit), gravity = [gx, gy, gz] (m/s^2)
+//   [kernel]     type = "cubic_spline" | "wendland_c2", eta, min_smoothing_length, max_smoothing_length,
+//                neighbour_band (integrator.hpp)
+//   [viscosity]  alpha, beta, switch = "none" | "morris_monaghan", alpha_min, decay_factor, epsilon
+//   [time_step]  courant, acceleration_factor, density_change, energy_change, energy_floor, max_step
+//   [neighbours] algorithm = "octree" | "cell_list", skin, sort_interval (steps between curve sorts)
+//   [output]     snapshot_times = [...] (s), checkpoint_interval_steps, checkpoint_interval_seconds,
+//                conservation_log (bool)
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "craterkit/sph/integrator.hpp"
+#include "craterkit/sph/neighbour_search.hpp"
+#include "craterkit/sph/rates.hpp"
+#include "craterkit/sph/setups.hpp"
+#include "craterkit/sph/time_step.hpp"
+
+namespace craterkit::sph {
+
+struct RunParameters {
+  double end_time = 0.0;      // s (> 0, required)
+  std::uint64_t max_steps = 0;  // 0: unlimited
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};
+};
+
+struct OutputParameters {
+  std::vector<double> snapshot_times;  // s, ascending; the final state is always written too
+  std::uint64_t checkpoint_interval_steps = 0;   // 0: none by step count
+  double checkpoint_interval_seconds = 600.0;    // wall seconds between checkpoints (0: none)
+  bool conservation_log = true;
+};
+
+struct NeighbourParameters {
+  NeighbourSearchOptions search{};
+  std::uint64_t sort_interval = 20;  // steps between space-filling-curve sorts (0: never)
+};
+
+using SetupParameters = std::variant<SedovSetup, SodSetup, PlateImpactSetup>;
+
+struct SimulationConfig {
+  std::string name = "simulation";
+  SetupParameters setup = SedovSetup{};
+  RunParameters run{};
+  KernelType kernel = KernelType::cubic_spline;
+  SmoothingLengthParameters smoothing{};
+  ArtificialViscosity viscosity{};
+  TimeStepParameters time_step{};
+  NeighbourParameters neighbours{};
+  OutputParameters output{};
+};
+
+// Parses TOML text; `source` names the file in error messages.
+SimulationConfig parse_simulation_config(const std::string& toml_text, const std::string& source);
+// Reads and parses a file (InputError if it cannot be read).
+SimulationConfig load_simulation_config(const std::filesystem::path& path);
+
+[[nodiscard]] std::string setup_name(const SetupParameters& setup);
+
+}  // namespace craterkit::sph

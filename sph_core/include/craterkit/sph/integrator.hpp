@@ -1,0 +1,57 @@
+#pragma once
+// Second-order time integration: the kick-drift-kick leapfrog with a predicted velocity and state
+// for the force evaluation (as in Phantom, Price et al. 2018, eqs. 68-72), one rate evaluation per
+// step. With the rates r^n of the state at t^n stored in the particles:
+//
+//   predict:  v^{n+1/2} = v^n + dt/2 a^n,  x^{n+1} = x^n + dt v^{n+1/2},
+//             state used for the new rates: v* = v^n + dt a^n, rho* = rho^n + dt drho^n,
+//             u* = u^n + dt du^n, alpha* = alpha^n + dt dalpha^n
+//   (rates r^{n+1} evaluated at x^{n+1} and the predicted state)
+//   correct:  q^{n+1} = q* + dt/2 (r^{n+1} - r^n)   for q = v, rho, u, alpha
+//             (= q^n + dt/2 (r^n + r^{n+1}): trapezoidal, second order)
+//
+// Fixed and ejected particles are not advanced. The smoothing length follows the density,
+// h ~ (m / rho)^(1/3) (physics.md section 1: dh/dt = -(h/3) (drho/dt)/rho, applied as the ratio of
+// the cube roots of the densities before and after each update), and is in addition steered
+// towards the neighbour number of the lattice, N_target = (4 pi / 3) (2 eta)^3 (58 for eta = 1.2),
+// whenever a particle's count leaves the band N_target (1 +- neighbour_band): by the factor
+// (1 + (N_target/N)^(1/3))/2 per step, within [0.8, 1.25] (Hernquist & Katz 1989, eq. 2.12). Why:
+// with the continuity equation the density of a particle says nothing about how far its
+// neighbours are; a hot particle whose surroundings moved away (the centre of the Sedov blast)
+// otherwise keeps a small h, loses its neighbours and keeps its energy. Clamped to [h_min, h_max].
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "craterkit/sph/neighbour_search.hpp"
+#include "craterkit/sph/particles.hpp"
+
+namespace craterkit::sph {
+
+struct SmoothingLengthParameters {
+  double eta = 1.2;  // h = eta (m/rho)^(1/3): about 58 neighbours within 2h for eta = 1.2
+  double min_smoothing_length = 0.0;                                       // m
+  double max_smoothing_length = std::numeric_limits<double>::infinity();  // m
+  double neighbour_band = 0.25;  // relative deviation of the neighbour count tolerated without steering
+};
+
+// The rates of step n, kept between predict() and correct().
+struct IntegratorWorkspace {
+  std::vector<double> acceleration_x, acceleration_y, acceleration_z, density_rate, energy_rate,
+      viscosity_alpha_rate;
+};
+
+// Kick, drift (positions wrapped into the box on periodic axes) and predicted state.
+void predict(Particles& particles, double dt, const Box& box, IntegratorWorkspace& workspace,
+             const SmoothingLengthParameters& smoothing);
+
+// Trapezoidal correction with the rates evaluated after predict().
+// neighbour_count: pairs per particle from the rate pass after predict() (RateWorkspace).
+void correct(Particles& particles, double dt, const IntegratorWorkspace& workspace,
+             std::span<const std::uint32_t> neighbour_count, const SmoothingLengthParameters& smoothing);
+
+// h = eta (m/rho)^(1/3), clamped, for every particle that is not fixed.
+void update_smoothing_length(Particles& particles, const SmoothingLengthParameters& smoothing);
+
+}  // namespace craterkit::sph

@@ -1,0 +1,102 @@
+#pragma once
+// Hydrodynamic rates of change (physics.md section 1): continuity density, momentum, specific
+// internal energy, Monaghan-Gingold artificial viscosity with an optional Morris-Monaghan switch,
+// and the Randles-Libersky corrected velocity gradient that will drive the stress rate.
+//
+// One pass over the pairs: an OpenMP driver over particles i and an inline body over the
+// neighbours j of i (gather form: each i writes only its own rates, so no atomics and the result
+// does not depend on the number of threads). The pair body is instantiated per kernel and per
+// "solid" flag (deviatoric stress terms and velocity gradient on or off), chosen once per call.
+// Material physics (equations of state) is evaluated per particle before this pass
+// (rates_pressure.hpp); the pair loop only reads P/rho^2 and c.
+//
+// Continuity: drho_i/dt = rho_i sum_j (m_j/rho_j) v_ij . grad_i W_ij = -rho_i (div v)_i. physics.md
+// writes sum_j m_j v_ij . grad_i W_ij; the two agree where the density is smooth, but with m_j the
+// relative rate (1/rho_i) drho_i/dt of a particle much less dense than its neighbours grows as
+// 1/rho_i and drives its density to zero in finite time (seen in the hot, rarefied centre of the
+// Sedov blast, where the time step then collapsed). The volume-weighted form only lets the density
+// decay exponentially. The energy equation keeps the m_j form, so that it matches the momentum
+// equation pair by pair and total energy is conserved to the time-integration error.
+//
+// Momentum is conserved pairwise: the force term for (i, j) is built from expressions symmetric in
+// i and j (hbar, cbar, rhobar, P_i/rho_i^2 + P_j/rho_j^2) times grad_i W_ij = -grad_j W_ji, so the
+// pair forces cancel to round-off.
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "craterkit/sph/kernel.hpp"
+#include "craterkit/sph/particles.hpp"
+
+namespace craterkit::sph {
+
+enum class ViscositySwitch {
+  none,            // alpha constant (Monaghan & Gingold 1983)
+  morris_monaghan  // per-particle alpha evolved by Morris & Monaghan (1997), eq. 10 with the
+                   // (alpha_max - alpha) source factor of Rosswog et al. (2000)
+};
+
+struct ArtificialViscosity {
+  double alpha = 1.0;  // linear coefficient (the maximum when a switch is on)
+  double beta = 2.0;   // quadratic coefficient; with a switch, beta_ij = beta * alpha_ij / alpha
+  ViscositySwitch viscosity_switch = ViscositySwitch::none;
+  double alpha_min = 0.1;     // floor the switch decays to away from shocks
+  double decay_factor = 0.2;  // l in the decay time tau = h / (l c) of Morris & Monaghan
+  double epsilon = 0.01;      // eta^2 regulariser in mu_ij = hbar v.x / (r^2 + eps hbar^2)
+};
+
+struct RateOptions {
+  KernelType kernel = KernelType::cubic_spline;
+  ArtificialViscosity viscosity{};
+  std::array<double, 3> gravity{0.0, 0.0, 0.0};  // constant body force, m/s^2
+  // Period along each axis (upper - lower) for minimum-image displacements; 0 = not periodic.
+  std::array<double, 3> period{0.0, 0.0, 0.0};
+  // Deviatoric stress terms in momentum and energy, and the corrected velocity gradient. Off for
+  // fluids: the pair loop then carries no stress work at all.
+  bool solid = false;
+};
+
+// CSR neighbour lists: the neighbours of i are neighbours[offsets[i] .. offsets[i+1]). Entries may
+// include pairs slightly beyond h_i + h_j (a search skin); the pair body drops them.
+struct PairList {
+  std::span<const std::uint64_t> offsets;
+  std::span<const std::uint32_t> neighbours;
+};
+
+// Corrected velocity gradient (grad v)_ab = dv_a/dx_b per particle, row-major (xx, xy, xz, yx, ...),
+// and the uncorrected one used for the S:eps_dot work term (energy-consistent with the momentum
+// equation, physics.md section 1). Filled only when RateOptions::solid is set.
+struct VelocityGradients {
+  std::array<std::vector<double>, 9> corrected;
+  std::array<std::vector<double>, 9> uncorrected;
+  void resize(std::size_t n);
+};
+
+// Per-particle inputs derived before the pair pass (one division per particle, not per pair).
+struct RateWorkspace {
+  std::vector<double> pressure_over_density_squared;  // P/rho^2
+  std::vector<double> volume;                         // m/rho
+  // Output of the pair pass: pairs with r < h_i + h_j per particle (drives the smoothing length).
+  std::vector<std::uint32_t> neighbour_count;
+};
+
+struct RateSummary {
+  // min over active particles of h_i / (c_i + 1.2 (alpha_i c_i + beta_i max_j |mu_ij|)): the Courant
+  // time of physics.md section 1 before the factor C.
+  double min_signal_time = std::numeric_limits<double>::infinity();
+  std::uint64_t interacting_pairs = 0;  // (i, j) entries with r < h_i + h_j, both orders counted
+};
+
+// Fills acceleration_{x,y,z}, density_rate, energy_rate and viscosity_alpha_rate of every active
+// particle (zero for fixed and ejected ones). Requires pressure and sound_speed to be current and
+// workspace.pressure_over_density_squared and volume filled (update_pressure does both); fills
+// workspace.neighbour_count.
+RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                          RateWorkspace& workspace, VelocityGradients* gradients = nullptr);
+
+[[nodiscard]] std::string_view viscosity_switch_name(ViscositySwitch s) noexcept;
+
+}  // namespace craterkit::sph

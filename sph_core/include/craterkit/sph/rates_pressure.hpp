@@ -1,0 +1,19 @@
+#pragma once
+// Per-particle thermodynamic state before the pair pass: pressure and sound speed from each
+// particle's equation of state (eos.hpp), and P/rho^2 for the momentum and energy equations.
+// The material is resolved here, once per particle (std::visit over the EquationOfState variant),
+// never inside the pair loop.
+#include <span>
+
+#include "craterkit/sph/eos.hpp"
+#include "craterkit/sph/particles.hpp"
+#include "craterkit/sph/rates.hpp"
+
+namespace craterkit::sph {
+
+// equations_of_state[m] is the law of material id m. Fixed particles are evaluated too (they
+// exert pressure on their neighbours). Throws std::out_of_range for a material id without a law.
+void update_pressure(Particles& particles, std::span<const EquationOfState> equations_of_state,
+                     RateWorkspace& workspace);
+
+}  // namespace craterkit::sph

@@ -1,0 +1,127 @@
+#pragma once
+// The simulation driver: one step is a short sequence of phases, each a free function over the
+// particle set and each timed (architecture.md):
+//
+//   sort along the space-filling curve (every sort_interval steps)
+//   -> predict (kick, drift, predicted state; integrator.hpp)
+//   -> neighbours (rebuilt when the skin no longer covers the motion, after a sort or checkpoint)
+//   -> equation of state per particle -> rates (pair pass) -> correct -> equation of state
+//   -> next time step
+//
+// run_simulation() adds the outputs around the steps: HDF5 snapshots at the requested times (with
+// XDMF), a checkpoint (atomically replaced) every N steps or wall seconds and at the end, the
+// conserved-quantities log per step, the progress line, and the summary.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "craterkit/sph/config.hpp"
+#include "craterkit/sph/conservation_log.hpp"
+#include "craterkit/sph/integrator.hpp"
+#include "craterkit/sph/neighbour_search.hpp"
+#include "craterkit/sph/phase_timers.hpp"
+#include "craterkit/sph/rates.hpp"
+#include "craterkit/sph/setups.hpp"
+#include "craterkit/sph/snapshot.hpp"
+#include "craterkit/sph/time_step.hpp"
+
+namespace craterkit::sph {
+
+// The set-up named by the configuration (problem.setup).
+ProblemSetup build_problem(const SimulationConfig& config);
+
+class Simulation {
+ public:
+  // A fresh run at t = 0: evaluates the rates and the first time step.
+  Simulation(SimulationConfig config, ProblemSetup problem);
+  // Continues from a checkpoint: `problem` supplies the materials and the box, `particles` and
+  // `attributes` (time, step, next time step, initial conserved quantities) the state.
+  Simulation(SimulationConfig config, ProblemSetup problem, Particles particles, const RunAttributes& attributes);
+
+  // Advances one step, shortened so as not to pass target_time (the step then ends exactly on it).
+  // Throws std::runtime_error if the time step collapses (not positive or not finite).
+  void step(double target_time);
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] std::uint64_t step_count() const { return step_; }
+  [[nodiscard]] double next_time_step() const { return dt_next_; }
+  [[nodiscard]] const TimeStepLimits& time_step_limits() const { return limits_; }
+  [[nodiscard]] Particles& particles() { return problem_.particles; }
+  [[nodiscard]] const Particles& particles() const { return problem_.particles; }
+  [[nodiscard]] const std::vector<Material>& materials() const { return problem_.materials; }
+  [[nodiscard]] const Box& box() const { return problem_.box; }
+  [[nodiscard]] const SimulationConfig& config() const { return config_; }
+  [[nodiscard]] PhaseTimers& timers() { return timers_; }
+  // Interacting pairs (r < h_i + h_j) per particle in the last rate evaluation.
+  [[nodiscard]] double mean_neighbours() const;
+  [[nodiscard]] const ConservedQuantities& initial_conserved() const { return initial_; }
+  [[nodiscard]] ConservedQuantities conserved() const;
+  // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
+  [[nodiscard]] double bytes_per_particle() const;
+  [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
+
+  // Everything a checkpoint needs besides the particles.
+  [[nodiscard]] RunAttributes attributes() const;
+  // Rebuild the neighbour lists at the next step (after a checkpoint, so that a restarted run, which
+  // must build them afresh, follows the same sequence of lists).
+  void force_neighbour_rebuild() { force_rebuild_ = true; }
+
+ private:
+  void evaluate_rates();
+  void update_equation_of_state();
+
+  SimulationConfig config_;
+  ProblemSetup problem_;
+  std::vector<EquationOfState> equations_of_state_;
+  RateOptions rate_options_;
+  NeighbourSearch search_;
+  NeighbourLists lists_;
+  RateWorkspace rate_workspace_;
+  IntegratorWorkspace integrator_workspace_;
+  std::vector<std::uint32_t> order_;
+  PhaseTimers timers_;
+  RateSummary rate_summary_{};
+  TimeStepLimits limits_{};
+  ConservedQuantities initial_{};
+  double time_ = 0.0;
+  double dt_next_ = 0.0;
+  std::uint64_t step_ = 0;
+  std::uint64_t rebuilds_ = 0;
+  bool force_rebuild_ = true;
+};
+
+struct RunOptions {
+  std::filesystem::path output_directory;  // empty: run without writing files
+  bool resume = false;                     // continue from output_directory/checkpoint.h5 if present
+  bool progress = true;                    // the progress line on stderr
+};
+
+struct SimulationSummary {
+  std::string name;
+  std::string setup;
+  std::size_t particles = 0;
+  std::uint64_t steps = 0;             // completed steps of the run (including before a restart)
+  std::uint64_t steps_this_run = 0;    // steps taken by this invocation
+  double time = 0.0;                   // s, simulated
+  double wall_seconds = 0.0;
+  double particle_updates_per_second = 0.0;  // particles x steps_this_run / wall_seconds
+  double mean_neighbours = 0.0;
+  double relative_energy_error = 0.0;
+  double relative_momentum_error = 0.0;
+  double bytes_per_particle = 0.0;
+  int threads = 1;
+  bool resumed = false;
+  std::uint64_t neighbour_rebuilds = 0;
+  std::vector<std::pair<std::string, double>> phase_seconds;
+  std::vector<std::string> snapshots;  // files written by this invocation
+  std::string checkpoint;              // the last checkpoint written ("" if none)
+  std::string conservation_log;
+  std::string phase_table;             // PhaseTimers::table()
+};
+
+SimulationSummary run_simulation(const SimulationConfig& config, const RunOptions& options);
+
+}  // namespace craterkit::sph

@@ -1,0 +1,321 @@
+#include "craterkit/sph/config.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "craterkit/common/input_error.hpp"
+
+namespace craterkit::sph {
+
+namespace {
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+// One [table] of the file: typed getters that remember which keys were read, and finish() that
+// rejects every key not read (an unknown key, or a misspelt one).
+class Section {
+ public:
+  Section(const toml::table* table, std::string name, std::string source)
+      : table_(table), name_(std::move(name)), source_(std::move(source)) {}
+
+  [[nodiscard]] std::string key(const std::string& k) const { return name_.empty() ? k : name_ + "." + k; }
+
+  [[noreturn]] void fail(const std::string& k, const std::string& what) const {
+    throw InputError(source_ + ": " + key(k) + ": " + what);
+  }
+
+  const toml::node* find(const std::string& k) {
+    used_.insert(k);
+    if (table_ == nullptr) return nullptr;
+    return table_->get(k);
+  }
+
+  // A number (integer or float) in [lo, hi] (open bounds when the flags say so).
+  double number(const std::string& k, double fallback, double lo, double hi, bool lo_open = false) {
+    const toml::node* node = find(k);
+    if (node == nullptr) return fallback;
+    std::optional<double> v;
+    if (node->is_floating_point()) v = node->as_floating_point()->get();
+    if (node->is_integer()) v = static_cast<double>(node->as_integer()->get());
+    if (!v) fail(k, "expected a number");
+    const double x = *v;
+    const bool below = lo_open ? !(x > lo) : !(x >= lo);
+    if (below || !(x <= hi) || !std::isfinite(x)) {
+      fail(k, "value " + format_number(x) + " out of range: allowed " + (lo_open ? "(" : "[") +
+                  format_number(lo) + ", " + format_number(hi) + "]");
+    }
+    return x;
+  }
+
+  std::int64_t integer(const std::string& k, std::int64_t fallback, std::int64_t lo, std::int64_t hi) {
+    const toml::node* node = find(k);
+    if (node == nullptr) return fallback;
+    if (!node->is_integer()) fail(k, "expected an integer");
+    const std::int64_t x = node->as_integer()->get();
+    if (x < lo || x > hi) {
+      fail(k, "value " + std::to_string(x) + " out of range: allowed [" + std::to_string(lo) + ", " +
+                  std::to_string(hi) + "]");
+    }
+    return x;
+  }
+
+  bool boolean(const std::string& k, bool fallback) {
+    const toml::node* node = find(k);
+    if (node == nullptr) return fallback;
+    if (!node->is_boolean()) fail(k, "expected true or false");
+    return node->as_boolean()->get();
+  }
+
+  std::string text(const std::string& k, const std::string& fallback,
+                   const std::vector<std::string>& allowed = {}) {
+    const toml::node* node = find(k);
+    if (node == nullptr) return fallback;
+    if (!node->is_string()) fail(k, "expected a string");
+    std::string v = node->as_string()->get();
+    if (!allowed.empty()) {
+      bool ok = false;
+      std::string list;
+      for (const auto& a : allowed) {
+        ok = ok || a == v;
+        list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+      }
+      if (!ok) fail(k, "value \"" + v + "\" not allowed: one of " + list);
+    }
+    return v;
+  }
+
+  std::vector<double> numbers(const std::string& k, const std::vector<double>& fallback) {
+    const toml::node* node = find(k);
+    if (node == nullptr) return fallback;
+    const toml::array* array = node->as_array();
+    if (array == nullptr) fail(k, "expected an array of numbers");
+    std::vector<double> out;
+    for (std::size_t i = 0; i < array->size(); ++i) {
+      const toml::node& e = *array->get(i);
+      if (e.is_floating_point()) {
+        out.push_back(e.as_floating_point()->get());
+      } else if (e.is_integer()) {
+        out.push_back(static_cast<double>(e.as_integer()->get()));
+      } else {
+        fail(k, "element " + std::to_string(i) + " is not a number");
+      }
+      if (!std::isfinite(out.back())) fail(k, "element " + std::to_string(i) + " is not finite");
+    }
+    return out;
+  }
+
+  void finish() const {
+    if (table_ == nullptr) return;
+    for (const auto& [k, node] : *table_) {
+      const std::string name(k.str());
+      if (used_.count(name) == 0) {
+        std::string list;
+        for (const auto& u : used_) list += (list.empty() ? "" : ", ") + u;
+        throw InputError(source_ + ": unknown key " + key(name) + " (allowed here: " + list + ")");
+      }
+    }
+  }
+
+ private:
+  const toml::table* table_;
+  std::string name_;
+  std::string source_;
+  std::set<std::string> used_;
+};
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr std::int64_t int_max = std::numeric_limits<std::int64_t>::max();
+
+}  // namespace
+
+std::string setup_name(const SetupParameters& setup) {
+  switch (setup.index()) {
+    case 0:
+      return "sedov";
+    case 1:
+      return "sod";
+    default:
+      return "plates";
+  }
+}
+
+SimulationConfig parse_simulation_config(const std::string& toml_text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << source << ":" << e.source().begin.line << ":" << e.source().begin.column
+      << ": TOML syntax error: " << e.description();
+    throw InputError(s.str());
+  }
+
+  const std::vector<std::string> tables = {"problem", "sedov",     "sod",       "plates",     "run",
+                                           "kernel",  "viscosity", "time_step", "neighbours", "output"};
+  for (const auto& [k, node] : root) {
+    const std::string name(k.str());
+    bool known = false;
+    for (const auto& t : tables) known = known || t == name;
+    if (!known) {
+      throw InputError(
+          source + ": unknown table or key " + name +
+          " (allowed: problem, sedov, sod, plates, run, kernel, viscosity, time_step, neighbours, "
+          "output)");
+    }
+    if (!node.is_table()) throw InputError(source + ": " + name + " must be a table ([" + name + "])");
+  }
+  auto section = [&](const std::string& name) { return Section(root[name].as_table(), name, source); };
+
+  SimulationConfig c;
+  {
+    Section s = section("problem");
+    c.name = s.text("name", "simulation");
+    const std::string setup = s.text("setup", "", {"sedov", "sod", "plates"});
+    if (setup.empty()) s.fail("setup", "missing: one of \"sedov\", \"sod\", \"plates\"");
+    s.finish();
+    for (const char* other : {"sedov", "sod", "plates"}) {
+      if (other != setup && root.contains(other)) {
+        throw InputError(source + ": table [" + std::string(other) + "] given but problem.setup = \"" +
+                         setup + "\"");
+      }
+    }
+    if (setup == "sedov") {
+      Section t = section("sedov");
+      SedovSetup p;
+      p.material = t.text("material", p.material);
+      p.particles_per_side = static_cast<int>(t.integer("particles_per_side", p.particles_per_side, 4, 400));
+      p.box_size = t.number("box_size", p.box_size, 0.0, inf, true);
+      p.density = t.number("density", p.density, 0.0, inf, true);
+      p.blast_energy = t.number("blast_energy", p.blast_energy, 0.0, inf, true);
+      p.background_energy = t.number("background_energy", p.background_energy, 0.0, inf);
+      t.finish();
+      c.setup = p;
+    } else if (setup == "sod") {
+      Section t = section("sod");
+      SodSetup p;
+      p.material = t.text("material", p.material);
+      p.left_particles_per_length =
+          static_cast<int>(t.integer("left_particles_per_length", p.left_particles_per_length, 4, 100000));
+      p.cross_section = t.number("cross_section", p.cross_section, 0.0, 1.0, true);
+      p.left_density = t.number("left_density", p.left_density, 0.0, inf, true);
+      p.left_pressure = t.number("left_pressure", p.left_pressure, 0.0, inf, true);
+      p.right_density = t.number("right_density", p.right_density, 0.0, inf, true);
+      p.right_pressure = t.number("right_pressure", p.right_pressure, 0.0, inf, true);
+      t.finish();
+      c.setup = p;
+    } else {
+      Section t = section("plates");
+      PlateImpactSetup p;
+      p.projectile_material = t.text("projectile_material", p.projectile_material);
+      p.target_material = t.text("target_material", p.target_material);
+      p.impact_velocity = t.number("impact_velocity", p.impact_velocity, 0.0, inf, true);
+      p.projectile_thickness = t.number("projectile_thickness", p.projectile_thickness, 0.0, inf, true);
+      p.target_thickness = t.number("target_thickness", p.target_thickness, 0.0, inf, true);
+      p.particle_spacing = t.number("particle_spacing", p.particle_spacing, 0.0, inf, true);
+      p.cross_section_particles =
+          static_cast<int>(t.integer("cross_section_particles", p.cross_section_particles, 4, 1000));
+      if (p.particle_spacing > 0.5 * std::min(p.projectile_thickness, p.target_thickness)) {
+        t.fail("particle_spacing",
+               "value " + format_number(p.particle_spacing) + " too large: at most half the thinner plate");
+      }
+      t.finish();
+      c.setup = p;
+    }
+  }
+  {
+    Section s = section("run");
+    c.run.end_time = s.number("end_time", 0.0, 0.0, inf, true);
+    if (!root["run"]["end_time"]) s.fail("end_time", "missing: the simulated end time in s (> 0)");
+    c.run.max_steps = static_cast<std::uint64_t>(s.integer("max_steps", 0, 0, int_max));
+    const auto g = s.numbers("gravity", {0.0, 0.0, 0.0});
+    if (g.size() != 3)
+      s.fail("gravity", "expected 3 components [gx, gy, gz], got " + std::to_string(g.size()));
+    c.run.gravity = {g[0], g[1], g[2]};
+    s.finish();
+  }
+  {
+    Section s = section("kernel");
+    const std::string type = s.text("type", "cubic_spline", {"cubic_spline", "wendland_c2"});
+    c.kernel = type == "wendland_c2" ? KernelType::wendland_c2 : KernelType::cubic_spline;
+    c.smoothing.eta = s.number("eta", c.smoothing.eta, 0.8, 3.0);
+    c.smoothing.min_smoothing_length = s.number("min_smoothing_length", 0.0, 0.0, inf);
+    c.smoothing.max_smoothing_length = s.number("max_smoothing_length", inf, 0.0, inf, true);
+    c.smoothing.neighbour_band = s.number("neighbour_band", c.smoothing.neighbour_band, 0.0, 1.0, true);
+    if (c.smoothing.max_smoothing_length < c.smoothing.min_smoothing_length) {
+      s.fail("max_smoothing_length", "must not be below kernel.min_smoothing_length");
+    }
+    s.finish();
+  }
+  {
+    Section s = section("viscosity");
+    auto& v = c.viscosity;
+    v.alpha = s.number("alpha", v.alpha, 0.0, 10.0);
+    v.beta = s.number("beta", v.beta, 0.0, 20.0);
+    const std::string sw = s.text("switch", "none", {"none", "morris_monaghan"});
+    v.viscosity_switch = sw == "morris_monaghan" ? ViscositySwitch::morris_monaghan : ViscositySwitch::none;
+    v.alpha_min = s.number("alpha_min", v.alpha_min, 0.0, 10.0);
+    if (v.alpha_min > v.alpha)
+      s.fail("alpha_min", "value " + format_number(v.alpha_min) + " exceeds viscosity.alpha");
+    v.decay_factor = s.number("decay_factor", v.decay_factor, 0.0, 10.0, true);
+    v.epsilon = s.number("epsilon", v.epsilon, 0.0, 1.0, true);
+    s.finish();
+  }
+  {
+    Section s = section("time_step");
+    auto& t = c.time_step;
+    t.courant = s.number("courant", t.courant, 0.0, 1.0, true);
+    t.acceleration_factor = s.number("acceleration_factor", t.acceleration_factor, 0.0, 1.0, true);
+    t.density_change = s.number("density_change", t.density_change, 0.0, 1.0, true);
+    t.energy_change = s.number("energy_change", t.energy_change, 0.0, 1.0);
+    t.energy_floor = s.number("energy_floor", t.energy_floor, 0.0, inf);
+    t.max_step = s.number("max_step", t.max_step, 0.0, inf, true);
+    s.finish();
+  }
+  {
+    Section s = section("neighbours");
+    auto& n = c.neighbours;
+    const std::string algo = s.text("algorithm", "octree", {"octree", "cell_list"});
+    n.search.algorithm = algo == "cell_list" ? NeighbourAlgorithm::cell_list : NeighbourAlgorithm::octree;
+    n.search.skin = s.number("skin", n.search.skin, 0.0, 1.0);
+    n.sort_interval = static_cast<std::uint64_t>(s.integer("sort_interval", 20, 0, int_max));
+    s.finish();
+  }
+  {
+    Section s = section("output");
+    auto& o = c.output;
+    o.snapshot_times = s.numbers("snapshot_times", {});
+    for (std::size_t i = 0; i < o.snapshot_times.size(); ++i) {
+      if (o.snapshot_times[i] < 0.0 || (i > 0 && o.snapshot_times[i] <= o.snapshot_times[i - 1])) {
+        s.fail("snapshot_times", "element " + std::to_string(i) + " (" + format_number(o.snapshot_times[i]) +
+                                     "): times must be >= 0 and strictly ascending");
+      }
+    }
+    o.checkpoint_interval_steps =
+        static_cast<std::uint64_t>(s.integer("checkpoint_interval_steps", 0, 0, int_max));
+    o.checkpoint_interval_seconds =
+        s.number("checkpoint_interval_seconds", o.checkpoint_interval_seconds, 0.0, inf);
+    o.conservation_log = s.boolean("conservation_log", true);
+    s.finish();
+  }
+  return c;
+}
+
+SimulationConfig load_simulation_config(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read configuration file " + path.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_simulation_config(text.str(), path.string());
+}
+
+}  // namespace craterkit::sph

@@ -1,0 +1,94 @@
+#include "craterkit/sph/integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace craterkit::sph {
+
+namespace {
+
+inline bool moves(std::uint8_t flags) {
+  return (flags & (particle_fixed | particle_ejected)) == 0;
+}
+
+inline double smoothing_length_of(double mass, double density, const SmoothingLengthParameters& s) {
+  const double h = s.eta * std::cbrt(mass / density);
+  return std::clamp(h, s.min_smoothing_length, s.max_smoothing_length);
+}
+
+}  // namespace
+
+void update_smoothing_length(Particles& p, const SmoothingLengthParameters& smoothing) {
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if ((p.flags[i] & particle_fixed) != 0) continue;
+    p.smoothing_length[i] = smoothing_length_of(p.mass[i], p.density[i], smoothing);
+  }
+}
+
+void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
+             const SmoothingLengthParameters& smoothing) {
+  const std::size_t count = p.size();
+  w.acceleration_x.resize(count);
+  w.acceleration_y.resize(count);
+  w.acceleration_z.resize(count);
+  w.density_rate.resize(count);
+  w.energy_rate.resize(count);
+  w.viscosity_alpha_rate.resize(count);
+  const auto n = static_cast<std::int64_t>(count);
+  const double half = 0.5 * dt;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const double ax = p.acceleration_x[i], ay = p.acceleration_y[i], az = p.acceleration_z[i];
+    w.acceleration_x[i] = ax;
+    w.acceleration_y[i] = ay;
+    w.acceleration_z[i] = az;
+    w.density_rate[i] = p.density_rate[i];
+    w.energy_rate[i] = p.energy_rate[i];
+    w.viscosity_alpha_rate[i] = p.viscosity_alpha_rate[i];
+    if (!moves(p.flags[i])) continue;
+    p.x[i] = wrap_position(box, 0, p.x[i] + dt * (p.vx[i] + half * ax));
+    p.y[i] = wrap_position(box, 1, p.y[i] + dt * (p.vy[i] + half * ay));
+    p.z[i] = wrap_position(box, 2, p.z[i] + dt * (p.vz[i] + half * az));
+    p.vx[i] += dt * ax;
+    p.vy[i] += dt * ay;
+    p.vz[i] += dt * az;
+    const double density = p.density[i];
+    p.density[i] += dt * p.density_rate[i];
+    p.specific_energy[i] += dt * p.energy_rate[i];
+    p.viscosity_alpha[i] += dt * p.viscosity_alpha_rate[i];
+    p.smoothing_length[i] = std::clamp(p.smoothing_length[i] * std::cbrt(density / p.density[i]),
+                                       smoothing.min_smoothing_length, smoothing.max_smoothing_length);
+  }
+}
+
+void correct(Particles& p, double dt, const IntegratorWorkspace& w,
+             const SmoothingLengthParameters& smoothing) {
+  const auto n = static_cast<std::int64_t>(p.size());
+  const double half = 0.5 * dt;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (!moves(p.flags[i])) continue;
+    p.vx[i] += half * (p.acceleration_x[i] - w.acceleration_x[i]);
+    p.vy[i] += half * (p.acceleration_y[i] - w.acceleration_y[i]);
+    p.vz[i] += half * (p.acceleration_z[i] - w.acceleration_z[i]);
+    const double density = p.density[i];
+    p.density[i] += half * (p.density_rate[i] - w.density_rate[i]);
+    p.specific_energy[i] += half * (p.energy_rate[i] - w.energy_rate[i]);
+    p.viscosity_alpha[i] += half * (p.viscosity_alpha_rate[i] - w.viscosity_alpha_rate[i]);
+    double factor = std::cbrt(density / p.density[i]);
+    const double count = neighbour_count[i];
+    if (count < low || count > high) {
+      factor *= std::clamp(0.5 * (1.0 + std::cbrt(target / std::max(count, 1.0))), 0.8, 1.25);
+    }
+    p.smoothing_length[i] =
+        std::clamp(p.smoothing_length[i] * factor, smoothing.min_smoothing_length, smoothing.max_smoothing_length);
+  }
+}
+
+}  // namespace craterkit::sph

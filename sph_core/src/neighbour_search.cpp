@@ -1,0 +1,654 @@
+#include "craterkit/sph/neighbour_search.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "craterkit/sph/space_filling_curve.hpp"
+
+namespace craterkit::sph {
+
+namespace {
+
+constexpr std::uint64_t empty_key = std::numeric_limits<std::uint64_t>::max();
+
+// Candidates are tested in blocks of this many particles (the size of the stack array of test results;
+// the default octree leaf fits in one). Finer blocks of 8 with their own bounding boxes cut the distance
+// tests by a quarter but cost more in mispredicted box tests: measured slower (RESULTS_neighbours.md).
+constexpr std::uint32_t block_size = 64;
+
+std::uint64_t hash_key(std::uint64_t key) {
+  return key * 0x9E3779B97F4A7C15ULL;
+}
+
+// Gap between the intervals [a0, a1] and [b0, b1] (0 when they overlap), along a periodic axis of
+// length `edge` also between their images one edge apart.
+template <bool Periodic>
+double interval_gap(double a0, double a1, double b0, double b1, bool periodic_axis, double edge) {
+  double gap = std::max({0.0, b0 - a1, a0 - b1});
+  if constexpr (Periodic) {
+    if (periodic_axis && gap > 0) {
+      gap = std::min({gap, std::max({0.0, b0 + edge - a1, a0 - b1 - edge}),
+                      std::max({0.0, b0 - edge - a1, a0 - b1 + edge})});
+    }
+  }
+  return gap;
+}
+
+}  // namespace
+
+NeighbourSearch::NeighbourSearch(NeighbourSearchOptions options) : options_(options) {
+  if (!(options_.skin >= 0.0) || !std::isfinite(options_.skin)) {
+    throw std::invalid_argument("neighbour search: skin must be finite and >= 0, got " +
+                                std::to_string(options_.skin));
+  }
+  if (options_.leaf_size < 1 || options_.leaf_size > 4096) {
+    throw std::invalid_argument("neighbour search: leaf_size must be in [1, 4096], got " +
+                                std::to_string(options_.leaf_size));
+  }
+}
+
+std::size_t NeighbourSearch::workspace_bytes() const {
+  std::size_t bytes =
+      keyed_.capacity() * sizeof(keyed_[0]) +
+      (xs_.capacity() + ys_.capacity() + zs_.capacity() + hs_.capacity()) * sizeof(double) +
+      original_.capacity() * sizeof(std::uint32_t) + groups_.capacity() * sizeof(Group) +
+      nodes_.capacity() * sizeof(Node) + cell_table_.capacity() * sizeof(cell_table_[0]) +
+      (rank_.capacity() + group_of_.capacity() + candidates_.capacity()) * sizeof(std::uint32_t) +
+      candidate_offsets_.capacity() * sizeof(std::uint64_t);
+  for (const auto& t : scratch_)
+    bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
+  return bytes;
+}
+
+void NeighbourSearch::release_workspace() {
+  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(keyed_);
+  release(groups_);
+  release(nodes_);
+  release(cell_table_);
+  release(rank_);
+  release(group_of_);
+  release(candidate_offsets_);
+  release(candidates_);
+  release(scratch_);
+}
+
+void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
+  const std::size_t n = in.x.size();
+  if (in.y.size() != n || in.z.size() != n || in.smoothing_length.size() != n) {
+    throw std::invalid_argument("neighbour search: x, y, z and smoothing_length must have the same length");
+  }
+  if (n >= std::numeric_limits<std::uint32_t>::max()) {
+    throw std::invalid_argument("neighbour search: more than 2^32-2 particles");
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (box.periodic[a] && !(box.edge(a) > 0 && std::isfinite(box.edge(a)))) {
+      throw std::invalid_argument("neighbour search: periodic axis " + std::to_string(a) +
+                                  " needs upper > lower, got edge " + std::to_string(box.edge(a)));
+    }
+  }
+  xs_.resize(n);
+  ys_.resize(n);
+  zs_.resize(n);
+  hs_.resize(n);
+  original_.resize(n);
+  keyed_.resize(n);
+
+  // Wrapped positions (periodic axes) into the sorted-copy arrays, unsorted for now; h_max and validity.
+  double h_max = 0.0;
+  double h_min = std::numeric_limits<double>::infinity();
+  bool h_valid = true;
+#pragma omp parallel for schedule(static) reduction(max : h_max) reduction(min : h_min) reduction(&& : h_valid)
+  for (std::size_t i = 0; i < n; ++i) {
+    xs_[i] = wrap_position(box, 0, in.x[i]);
+    ys_[i] = wrap_position(box, 1, in.y[i]);
+    zs_[i] = wrap_position(box, 2, in.z[i]);
+    const double h = in.smoothing_length[i];
+    h_max = std::max(h_max, h);
+    h_min = std::min(h_min, h);
+    h_valid = h_valid && h > 0 && std::isfinite(h);  // also false for NaN, which min/max ignore
+  }
+  if (!h_valid) {
+    throw std::invalid_argument("neighbour search: smoothing lengths must be finite and > 0 (min " +
+                                std::to_string(h_min) + ", max " + std::to_string(h_max) + ")");
+  }
+  h_max_ = h_max;
+  const double reach = 2.0 * h_max * (1.0 + options_.skin);  // largest pair distance in the lists
+  for (int a = 0; a < 3; ++a) {
+    if (box.periodic[a] && !(box.edge(a) > 2.0 * reach)) {
+      throw std::invalid_argument("neighbour search: periodic box edge along axis " + std::to_string(a) +
+                                  " (" + std::to_string(box.edge(a)) +
+                                  ") must exceed 2 (1 + skin) (h_i + h_j) = " + std::to_string(2.0 * reach));
+    }
+  }
+  const CurveCube cube = bounding_cube(xs_, ys_, zs_);  // also rejects non-finite positions
+
+  if (options_.algorithm == NeighbourAlgorithm::octree) {
+    // The keys of curve_order(): particles sorted by the engine are found sorted and not re-sorted.
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      keyed_[i] = {morton_key(cube, xs_[i], ys_[i], zs_[i]), static_cast<std::uint32_t>(i)};
+    }
+  } else {
+    // Cells of edge >= reach, so every pair lies in the same or adjacent cells. Along periodic axes an
+    // integer number of cells fills the box (origin at box.lower) so that cell indices wrap.
+    for (int a = 0; a < 3; ++a) {
+      if (box.periodic[a]) {
+        const auto cells = std::max<std::int64_t>(1, std::int64_t(box.edge(a) / reach));
+        periodic_cells_[a] = cells;
+        cell_edge_[a] = box.edge(a) / double(cells);
+        cell_origin_[a] = box.lower[a];
+      } else {
+        periodic_cells_[a] = 0;
+        // Never more than 2^21 cells along an axis (key width): far-flung particles widen the cells.
+        cell_edge_[a] = std::max(reach, cube.edge / double((1u << morton_bits_per_axis) - 2));
+        if (!(cell_edge_[a] > 0)) cell_edge_[a] = 1.0;
+        cell_origin_[a] = cube.lower[a];
+      }
+    }
+    const std::array<double, 3> inverse{1.0 / cell_edge_[0], 1.0 / cell_edge_[1], 1.0 / cell_edge_[2]};
+    const auto cell = [&](int a, double v) {
+      auto c = std::int64_t((v - cell_origin_[a]) * inverse[a]);
+      if (periodic_cells_[a] > 0) c = std::clamp<std::int64_t>(c, 0, periodic_cells_[a] - 1);
+      return static_cast<std::uint32_t>(std::max<std::int64_t>(c, 0));
+    };
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      keyed_[i] = {morton_key(cell(0, xs_[i]), cell(1, ys_[i]), cell(2, zs_[i])),
+                   static_cast<std::uint32_t>(i)};
+    }
+  }
+  sort_keyed_indices(keyed_);
+
+  // Sorted copies, recomputed from the input in sorted order (no scratch array needed).
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = keyed_[k].second;
+    original_[k] = i;
+    xs_[k] = wrap_position(box, 0, in.x[i]);
+    ys_[k] = wrap_position(box, 1, in.y[i]);
+    zs_[k] = wrap_position(box, 2, in.z[i]);
+    hs_[k] = in.smoothing_length[i];
+  }
+}
+
+void NeighbourSearch::make_cells() {
+  const std::size_t n = keyed_.size();
+  groups_.clear();
+  for (std::size_t b = 0; b < n;) {
+    std::size_t e = b + 1;
+    while (e < n && keyed_[e].first == keyed_[b].first) ++e;
+    groups_.push_back({{}, {}, 0.0, std::uint32_t(b), std::uint32_t(e)});
+    b = e;
+  }
+  const std::size_t cells = groups_.size();
+  std::size_t capacity = 16;
+  while (capacity < 2 * cells) capacity *= 2;
+  cell_table_.assign(capacity, {empty_key, 0});
+  const std::uint64_t mask = capacity - 1;
+  for (std::size_t g = 0; g < cells; ++g) {
+    const std::uint64_t key = keyed_[groups_[g].begin].first;
+    std::uint64_t slot = hash_key(key) >> 20 & mask;
+    while (cell_table_[slot].first != empty_key) slot = (slot + 1) & mask;
+    cell_table_[slot] = {key, std::uint32_t(g)};
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t g = 0; g < cells; ++g) {
+    Group& group = groups_[g];
+    group.lower = {xs_[group.begin], ys_[group.begin], zs_[group.begin]};
+    group.upper = group.lower;
+    group.h_max = 0;
+    for (std::uint32_t k = group.begin; k < group.end; ++k) {
+      group.lower = {std::min(group.lower[0], xs_[k]), std::min(group.lower[1], ys_[k]),
+                     std::min(group.lower[2], zs_[k])};
+      group.upper = {std::max(group.upper[0], xs_[k]), std::max(group.upper[1], ys_[k]),
+                     std::max(group.upper[2], zs_[k])};
+      group.h_max = std::max(group.h_max, hs_[k]);
+    }
+  }
+}
+
+void NeighbourSearch::split_at_median(std::uint32_t begin, std::uint32_t end) {
+  std::array<double, 3> lower{xs_[begin], ys_[begin], zs_[begin]}, upper = lower;
+  for (std::uint32_t k = begin; k < end; ++k) {
+    lower = {std::min(lower[0], xs_[k]), std::min(lower[1], ys_[k]), std::min(lower[2], zs_[k])};
+    upper = {std::max(upper[0], xs_[k]), std::max(upper[1], ys_[k]), std::max(upper[2], zs_[k])};
+  }
+  int axis = 0;
+  for (int a = 1; a < 3; ++a) {
+    if (upper[a] - lower[a] > upper[axis] - lower[axis]) axis = a;
+  }
+  const std::vector<double>& coordinate = axis == 0 ? xs_ : (axis == 1 ? ys_ : zs_);
+  std::vector<std::uint32_t> order(end - begin);  // rare path: a temporary is fine
+  for (std::uint32_t k = begin; k < end; ++k) order[k - begin] = k;
+  // Ties broken by index so the split is deterministic.
+  std::nth_element(order.begin(), order.begin() + std::ptrdiff_t(order.size() / 2), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) {
+                     return coordinate[a] < coordinate[b] || (coordinate[a] == coordinate[b] && a < b);
+                   });
+  // Apply the permutation to every sorted array (keys are all equal in this range).
+  const auto apply = [&](auto& values) {
+    auto copy = std::vector<typename std::decay_t<decltype(values)>::value_type>(order.size());
+    for (std::size_t m = 0; m < order.size(); ++m) copy[m] = values[order[m]];
+    std::copy(copy.begin(), copy.end(), values.begin() + begin);
+  };
+  apply(keyed_);
+  apply(xs_);
+  apply(ys_);
+  apply(zs_);
+  apply(hs_);
+  apply(original_);
+}
+
+void NeighbourSearch::make_octree() {
+  const std::size_t n = keyed_.size();
+  groups_.clear();
+  nodes_.clear();
+  if (n == 0) return;
+  const std::size_t leaf_size = options_.leaf_size;
+  // Depth-first construction over the sorted keys: a node of level L holds keys sharing their top 3L bits.
+  // Chains of single-child levels are collapsed (the node keeps its range and descends a level).
+  struct Frame {
+    std::uint32_t begin, end;
+    int level;
+  };
+  const auto build = [&](auto&& self, Frame f) -> std::uint32_t {
+    const auto index = std::uint32_t(nodes_.size());
+    nodes_.push_back({});
+    int level = f.level;
+    const auto digit = [&](std::uint32_t k, int lvl) {
+      return int(keyed_[k].first >> (3 * (morton_bits_per_axis - 1 - lvl)) & 7);
+    };
+    while (f.end - f.begin > leaf_size && level < morton_bits_per_axis &&
+           digit(f.begin, level) == digit(f.end - 1, level)) {
+      ++level;
+    }
+    Node node{};
+    if (f.end - f.begin <= leaf_size) {
+      const auto g = std::uint32_t(groups_.size());
+      Group group{{xs_[f.begin], ys_[f.begin], zs_[f.begin]},
+                  {xs_[f.begin], ys_[f.begin], zs_[f.begin]},
+                  0.0,
+                  f.begin,
+                  f.end};
+      for (std::uint32_t k = f.begin; k < f.end; ++k) {
+        group.lower = {std::min(group.lower[0], xs_[k]), std::min(group.lower[1], ys_[k]),
+                       std::min(group.lower[2], zs_[k])};
+        group.upper = {std::max(group.upper[0], xs_[k]), std::max(group.upper[1], ys_[k]),
+                       std::max(group.upper[2], zs_[k])};
+        group.h_max = std::max(group.h_max, hs_[k]);
+      }
+      groups_.push_back(group);
+      node = {group.lower, group.upper, group.h_max, 0, std::int32_t(g)};
+    } else {
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      node = {{inf, inf, inf}, {-inf, -inf, -inf}, 0.0, 0, -1};
+      const auto add_child = [&](std::uint32_t b, std::uint32_t e, int child_level) {
+        const std::uint32_t child = self(self, Frame{b, e, child_level});
+        const Node& c = nodes_[child];
+        for (int a = 0; a < 3; ++a) {
+          node.lower[a] = std::min(node.lower[a], c.lower[a]);
+          node.upper[a] = std::max(node.upper[a], c.upper[a]);
+        }
+        node.h_max = std::max(node.h_max, c.h_max);
+      };
+      if (level >= morton_bits_per_axis) {
+        // More than leaf_size particles share one finest Morton cell: the bounding cube is over 2^21
+        // times the particle spacing (e.g. a few particles thrown very far). Split at the median of the
+        // longest axis instead (k-d), so that such a cell still costs O(n log n), not O(n^2).
+        split_at_median(f.begin, f.end);
+        const std::uint32_t middle = f.begin + (f.end - f.begin) / 2;
+        add_child(f.begin, middle, level);
+        add_child(middle, f.end, level);
+      } else {
+        for (std::uint32_t b = f.begin; b < f.end;) {
+          const int d = digit(b, level);
+          // End of this child's run: first key with a larger digit at this level.
+          const auto it =
+              std::partition_point(keyed_.begin() + b, keyed_.begin() + f.end, [&](const auto& item) {
+                return int(item.first >> (3 * (morton_bits_per_axis - 1 - level)) & 7) <= d;
+              });
+          const auto e = std::uint32_t(it - keyed_.begin());
+          add_child(b, e, level + 1);
+          b = e;
+        }
+      }
+    }
+    node.skip = std::uint32_t(nodes_.size());
+    nodes_[index] = node;
+    return index;
+  };
+  build(build, Frame{0, std::uint32_t(n), 0});
+}
+
+template <bool Periodic>
+void NeighbourSearch::candidates_octree(std::size_t g, const Box& box,
+                                        std::vector<std::uint32_t>& out) const {
+  const Group& group = groups_[g];
+  const double grow = 1.0 + options_.skin;
+  const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
+  const std::size_t count = nodes_.size();
+  for (std::size_t i = 0; i < count;) {
+    const Node& node = nodes_[i];
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double gap = interval_gap<Periodic>(group.lower[a], group.upper[a], node.lower[a], node.upper[a],
+                                                box.periodic[a], edge[a]);
+      d2 += gap * gap;
+    }
+    const double reach = grow * (group.h_max + node.h_max);
+    if (d2 < reach * reach) {
+      if (node.group >= 0) out.push_back(std::uint32_t(node.group));
+      ++i;
+    } else {
+      i = node.skip;
+    }
+  }
+}
+
+template <bool Periodic>
+void NeighbourSearch::candidates_cells(std::size_t g, const Box& box, std::vector<std::uint32_t>& out) const {
+  const Group& group = groups_[g];
+  const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
+  const double grow = 1.0 + options_.skin;
+  // Cell coordinates of this group from its key (de-interleave).
+  const std::uint64_t key = keyed_[group.begin].first;
+  std::array<std::int64_t, 3> c{};
+  for (int bit = 0; bit < morton_bits_per_axis; ++bit) {
+    c[0] |= std::int64_t((key >> (3 * bit + 2)) & 1) << bit;
+    c[1] |= std::int64_t((key >> (3 * bit + 1)) & 1) << bit;
+    c[2] |= std::int64_t((key >> (3 * bit)) & 1) << bit;
+  }
+  // Neighbouring cell coordinates along each axis (wrapped and deduplicated on periodic axes).
+  std::array<std::array<std::int64_t, 3>, 3> coords{};
+  std::array<int, 3> counts{};
+  for (int a = 0; a < 3; ++a) {
+    for (int d = -1; d <= 1; ++d) {
+      std::int64_t v = c[a] + d;
+      if (periodic_cells_[a] > 0) {
+        v = (v + periodic_cells_[a]) % periodic_cells_[a];
+      } else if (v < 0 || v >= (std::int64_t{1} << morton_bits_per_axis)) {
+        continue;
+      }
+      if (std::find(coords[a].begin(), coords[a].begin() + counts[a], v) == coords[a].begin() + counts[a]) {
+        coords[a][counts[a]++] = v;
+      }
+    }
+  }
+  const std::uint64_t mask = cell_table_.size() - 1;
+  for (int i = 0; i < counts[0]; ++i) {
+    for (int j = 0; j < counts[1]; ++j) {
+      for (int k = 0; k < counts[2]; ++k) {
+        const std::uint64_t want =
+            morton_key(std::uint32_t(coords[0][i]), std::uint32_t(coords[1][j]), std::uint32_t(coords[2][k]));
+        std::uint64_t slot = hash_key(want) >> 20 & mask;
+        while (cell_table_[slot].first != empty_key && cell_table_[slot].first != want)
+          slot = (slot + 1) & mask;
+        if (cell_table_[slot].first == empty_key) continue;
+        const std::uint32_t other = cell_table_[slot].second;
+        const Group& o = groups_[other];
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) {
+          const double gap = interval_gap<Periodic>(group.lower[a], group.upper[a], o.lower[a], o.upper[a],
+                                                    box.periodic[a], edge[a]);
+          d2 += gap * gap;
+        }
+        const double reach = grow * (group.h_max + o.h_max);
+        if (d2 < reach * reach) out.push_back(other);
+      }
+    }
+  }
+  // Groups are numbered along the curve: sorted candidates give neighbour lists in curve order.
+  std::sort(out.begin(), out.end());
+}
+
+template <bool Periodic>
+void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
+  const std::size_t n = xs_.size();
+  const double grow = 1.0 + options_.skin;
+  const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const std::array<double, 3> half{box.periodic[0] ? 0.5 * edge[0] : inf,
+                                   box.periodic[1] ? 0.5 * edge[1] : inf,
+                                   box.periodic[2] ? 0.5 * edge[2] : inf};
+  const bool octree = options_.algorithm == NeighbourAlgorithm::octree;
+  rank_.resize(n);
+  group_of_.resize(n);
+  const double* xs = xs_.data();
+  const double* ys = ys_.data();
+  const double* zs = zs_.data();
+  const double* hs = hs_.data();
+#pragma omp parallel
+  {
+#pragma omp for schedule(static) nowait
+    for (std::size_t k = 0; k < n; ++k) rank_[original_[k]] = std::uint32_t(k);
+#pragma omp for schedule(static)
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      for (std::uint32_t k = groups_[g].begin; k < groups_[g].end; ++k) group_of_[k] = std::uint32_t(g);
+    }
+  }
+  if (scratch_.size() < std::size_t(omp_get_max_threads()))
+    scratch_.resize(std::size_t(omp_get_max_threads()));
+
+  // Candidate groups of every group, counted then stored (finding them twice is cheap next to the pairs).
+  const std::size_t group_count = groups_.size();
+  const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
+    out.clear();
+    if (octree) {
+      candidates_octree<Periodic>(g, box, out);
+    } else {
+      candidates_cells<Periodic>(g, box, out);
+    }
+  };
+  candidate_offsets_.resize(group_count + 1);
+  candidate_offsets_[0] = 0;
+#pragma omp parallel
+  {
+    ThreadScratch& t = scratch_[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t g = 0; g < group_count; ++g) {
+      find_candidates(g, t.candidates);
+      candidate_offsets_[g + 1] = t.candidates.size();
+    }
+#pragma omp single
+    {
+      for (std::size_t g = 0; g < group_count; ++g) candidate_offsets_[g + 1] += candidate_offsets_[g];
+      candidates_.resize(candidate_offsets_[group_count]);
+    }
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t g = 0; g < group_count; ++g) {
+      find_candidates(g, t.candidates);
+      std::copy(t.candidates.begin(), t.candidates.end(),
+                candidates_.begin() + std::ptrdiff_t(candidate_offsets_[g]));
+    }
+  }
+
+  // Neighbours of sorted particle k written to out[0..]; returns their number, or `room` + 1 when they
+  // might not fit in `room` entries (the test writes every candidate before deciding whether to keep it).
+  const auto gather = [&](std::uint32_t k, std::uint32_t* out, std::size_t room) -> std::size_t {
+    const std::uint32_t g = group_of_[k];
+    const double xi = xs[k], yi = ys[k], zi = zs[k], hi = hs[k];
+    std::size_t used = 0;
+    for (std::uint64_t c = candidate_offsets_[g]; c < candidate_offsets_[g + 1]; ++c) {
+      const Group& o = groups_[candidates_[c]];
+      // Point-to-box distance: skip the whole candidate when even its largest h cannot reach i.
+      const double gx = interval_gap<Periodic>(xi, xi, o.lower[0], o.upper[0], box.periodic[0], edge[0]);
+      const double gy = interval_gap<Periodic>(yi, yi, o.lower[1], o.upper[1], box.periodic[1], edge[1]);
+      const double gz = interval_gap<Periodic>(zi, zi, o.lower[2], o.upper[2], box.periodic[2], edge[2]);
+      const double box_reach = grow * (hi + o.h_max);
+      if (gx * gx + gy * gy + gz * gz >= box_reach * box_reach) continue;
+      if (used + (o.end - o.begin) > room) return room + 1;
+      for (std::uint32_t block = o.begin; block < o.end; block += block_size) {
+        const std::uint32_t length = std::min(o.end - block, block_size);
+        const double* __restrict bx = xs + block;
+        const double* __restrict by = ys + block;
+        const double* __restrict bz = zs + block;
+        const double* __restrict bh = hs + block;
+        // Two steps: the distance tests (vectorised, no branches), then a branch-free compaction (the
+        // test is unpredictable: about 1 in 3 candidates is a neighbour). margin > 0 exactly when
+        // r^2 < reach^2 (IEEE subtraction of unequal finite numbers is nonzero).
+        std::array<double, block_size> margin;
+        for (std::uint32_t m = 0; m < length; ++m) {
+          double dx = xi - bx[m], dy = yi - by[m], dz = zi - bz[m];
+          if constexpr (Periodic) {  // minimum image, branch-free (half = infinity on open axes)
+            dx = dx > half[0] ? dx - edge[0] : (dx < -half[0] ? dx + edge[0] : dx);
+            dy = dy > half[1] ? dy - edge[1] : (dy < -half[1] ? dy + edge[1] : dy);
+            dz = dz > half[2] ? dz - edge[2] : (dz < -half[2] ? dz + edge[2] : dz);
+          }
+          const double reach = grow * (hi + bh[m]);
+          margin[m] = reach * reach - (dx * dx + dy * dy + dz * dz);
+        }
+        for (std::uint32_t m = 0; m < length; ++m) {
+          out[used] = original_[block + m];
+          used += std::size_t(margin[m] > 0) & std::size_t(block + m != k);
+        }
+      }
+    }
+    return used;
+  };
+  // The same into a growable vector from position `at`.
+  const auto gather_into = [&](std::uint32_t k, std::vector<std::uint32_t>& v, std::size_t at) {
+    for (;;) {
+      const std::size_t room = v.size() - at;
+      const std::size_t count = gather(k, v.data() + at, room);
+      if (count <= room) return count;
+      v.resize(at + 2 * room + 1024);
+    }
+  };
+
+  // Lists are written in the caller's particle order straight into lists.neighbours: thread t owns a
+  // contiguous range of particles and a region of the array sized from a sample (every 16th particle's
+  // count, plus 3 % and a margin); one move closes the gaps between the regions afterwards. A thread
+  // that fills its region continues in its own overflow vector (rare: the merge then copies once).
+  // Three barriers per build in all, so that shared cores (where each barrier may cost a scheduler time
+  // slice) do not slow the build; about 3 % slack in the lists is the only extra memory.
+  constexpr std::size_t sample_stride = 16;
+  lists.offsets.resize(n + 1);
+  lists.offsets[0] = 0;
+  bool overflowed = false;
+#pragma omp parallel
+  {
+    const auto threads = std::size_t(omp_get_num_threads());
+    const auto id = std::size_t(omp_get_thread_num());
+    ThreadScratch& t = scratch_[id];
+    const std::size_t first = n * id / threads, last = n * (id + 1) / threads;
+    t.first = first;
+    std::size_t sampled = 0, samples = 0;
+    for (std::size_t i = first; i < last; i += sample_stride, ++samples) {
+      sampled += gather_into(rank_[i], t.found, 0);
+    }
+    t.region_size =
+        samples ? std::size_t(1.03 * double(sampled) * double(last - first) / double(samples)) : 0;
+    t.region_size += 64 * (last - first > 0 ? 64 : 0);
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t start = 0;
+      for (std::size_t u = 0; u < threads; ++u) {
+        scratch_[u].region_start = start;
+        start += scratch_[u].region_size;
+      }
+      if (lists.neighbours.size() < start) lists.neighbours.resize(start);
+    }
+    // implicit barrier: regions are laid out
+    std::uint32_t* region = lists.neighbours.data() + t.region_start;
+    std::size_t used = 0;
+    t.overflow_from = last;
+    t.used = 0;  // entries in the overflow vector
+    for (std::size_t i = first; i < last; ++i) {
+      const std::uint32_t k = rank_[i];
+      std::size_t count =
+          t.overflow_from == last ? gather(k, region + used, t.region_size - used) : t.region_size + 1;
+      if (count <= t.region_size - used) {
+        used += count;
+      } else {
+        if (t.overflow_from == last) t.overflow_from = i;
+        count = gather_into(k, t.found, t.used);
+        t.used += count;
+      }
+      lists.offsets[i + 1] = count;  // the count for now
+    }
+    t.region_used = used;
+#pragma omp atomic update
+    overflowed |= t.overflow_from != last;
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t base = 0;
+      for (std::size_t u = 0; u < threads; ++u) {
+        scratch_[u].final_start = base;
+        base += scratch_[u].region_used + scratch_[u].used;
+      }
+      if (!overflowed) {
+        // Close the gaps: every region moves down (final_start <= region_start when nothing overflowed),
+        // in ascending order so that no data is overwritten before it is moved.
+        for (std::size_t u = 1; u < threads; ++u) {
+          const ThreadScratch& r = scratch_[u];
+          std::memmove(lists.neighbours.data() + r.final_start, lists.neighbours.data() + r.region_start,
+                       r.region_used * sizeof(std::uint32_t));
+        }
+      } else {
+        std::vector<std::uint32_t> merged(base);
+        for (std::size_t u = 0; u < threads; ++u) {
+          const ThreadScratch& r = scratch_[u];
+          auto out = std::copy_n(lists.neighbours.data() + r.region_start, r.region_used,
+                                 merged.data() + r.final_start);
+          std::copy_n(r.found.data(), r.used, out);
+        }
+        lists.neighbours.swap(merged);
+      }
+      lists.neighbours.resize(base);  // shrinking keeps the capacity for the next build
+    }
+    // implicit barrier; offsets: prefix sums over each thread's range from its final start
+    std::uint64_t offset = t.final_start;
+    for (std::size_t i = first; i < last; ++i) {
+      offset += lists.offsets[i + 1];
+      lists.offsets[i + 1] = offset;
+    }
+  }
+}
+
+void NeighbourSearch::build(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {
+  built_ = false;
+  sort_particles(input, box);
+  if (options_.algorithm == NeighbourAlgorithm::octree) {
+    make_octree();
+  } else {
+    make_cells();
+  }
+  if (box.any_periodic()) {
+    collect_pairs<true>(box, lists);
+  } else {
+    collect_pairs<false>(box, lists);
+  }
+  box_ = box;
+  built_ = true;
+}
+
+bool NeighbourSearch::needs_rebuild(const NeighbourInput& input) const {
+  const std::size_t n = xs_.size();
+  if (!built_ || input.x.size() != n || input.y.size() != n || input.z.size() != n ||
+      input.smoothing_length.size() != n) {
+    return true;
+  }
+  const double skin = options_.skin;
+  bool moved_too_far = false;
+#pragma omp parallel for schedule(static) reduction(|| : moved_too_far)
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::uint32_t i = original_[k];
+    const auto d = displacement(box_, input.x[i], input.y[i], input.z[i], xs_[k], ys_[k], zs_[k]);
+    const double moved = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double grown = std::max(0.0, input.smoothing_length[i] - hs_[k]);
+    // Written as !(<=) so that a NaN position or h asks for a rebuild (which then reports it).
+    if (!(moved + grown <= skin * hs_[k])) moved_too_far = true;
+  }
+  return moved_too_far;
+}
+
+}  // namespace craterkit::sph

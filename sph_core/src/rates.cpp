@@ -1,0 +1,265 @@
+#include "craterkit/sph/rates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+namespace craterkit::sph {
+
+void VelocityGradients::resize(std::size_t n) {
+  for (auto& component : corrected) component.resize(n);
+  for (auto& component : uncorrected) component.resize(n);
+}
+
+std::string_view viscosity_switch_name(ViscositySwitch s) noexcept {
+  return s == ViscositySwitch::morris_monaghan ? "morris_monaghan" : "none";
+}
+
+namespace {
+
+// Minimum-image wrap along one axis; half = +infinity for a non-periodic axis (never wraps).
+inline double wrap(double d, double period, double half) noexcept {
+  if (d > half) return d - period;
+  if (d < -half) return d + period;
+  return d;
+}
+
+// Inverts a 3x3 matrix (row-major); returns false when it is ill-conditioned, i.e. |det| small
+// compared with the product of the row norms (the Randles-Libersky matrix of a near-isolated
+// particle), in which case the caller keeps the uncorrected gradient.
+inline bool invert3(const double m[9], double inv[9]) noexcept {
+  const double c00 = m[4] * m[8] - m[5] * m[7];
+  const double c01 = m[5] * m[6] - m[3] * m[8];
+  const double c02 = m[3] * m[7] - m[4] * m[6];
+  const double det = m[0] * c00 + m[1] * c01 + m[2] * c02;
+  const double n0 = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+  const double n1 = std::sqrt(m[3] * m[3] + m[4] * m[4] + m[5] * m[5]);
+  const double n2 = std::sqrt(m[6] * m[6] + m[7] * m[7] + m[8] * m[8]);
+  if (!(std::abs(det) > 1e-3 * n0 * n1 * n2)) return false;
+  const double r = 1.0 / det;
+  inv[0] = c00 * r;
+  inv[1] = (m[2] * m[7] - m[1] * m[8]) * r;
+  inv[2] = (m[1] * m[5] - m[2] * m[4]) * r;
+  inv[3] = c01 * r;
+  inv[4] = (m[0] * m[8] - m[2] * m[6]) * r;
+  inv[5] = (m[2] * m[3] - m[0] * m[5]) * r;
+  inv[6] = c02 * r;
+  inv[7] = (m[1] * m[6] - m[0] * m[7]) * r;
+  inv[8] = (m[0] * m[4] - m[1] * m[3]) * r;
+  return true;
+}
+
+template <class Kernel, bool solid>
+RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options, RateWorkspace& workspace,
+                       VelocityGradients* gradients) {
+  const auto n = static_cast<std::int64_t>(p.size());
+  const double* x = p.x.data();
+  const double* y = p.y.data();
+  const double* z = p.z.data();
+  const double* vx = p.vx.data();
+  const double* vy = p.vy.data();
+  const double* vz = p.vz.data();
+  const double* mass = p.mass.data();
+  const double* rho = p.density.data();
+  const double* h = p.smoothing_length.data();
+  const double* c = p.sound_speed.data();
+  const double* alpha = p.viscosity_alpha.data();
+  const double* pr2 = workspace.pressure_over_density_squared.data();
+  const double* volume = workspace.volume.data();
+  workspace.neighbour_count.resize(p.size());
+  std::uint32_t* neighbour_count = workspace.neighbour_count.data();
+  const double* sxx = p.stress_xx.data();
+  const double* sxy = p.stress_xy.data();
+  const double* sxz = p.stress_xz.data();
+  const double* syy = p.stress_yy.data();
+  const double* syz = p.stress_yz.data();
+  const std::uint8_t* flags = p.flags.data();
+  const std::uint64_t* offsets = pairs.offsets.data();
+  const std::uint32_t* neighbours = pairs.neighbours.data();
+
+  double* ax_out = p.acceleration_x.data();
+  double* ay_out = p.acceleration_y.data();
+  double* az_out = p.acceleration_z.data();
+  double* drho_out = p.density_rate.data();
+  double* du_out = p.energy_rate.data();
+  double* dalpha_out = p.viscosity_alpha_rate.data();
+
+  const auto& av = options.viscosity;
+  const bool use_switch = av.viscosity_switch != ViscositySwitch::none;
+  const double beta_over_alpha = av.alpha > 0.0 ? av.beta / av.alpha : 0.0;
+  const double eps = av.epsilon;
+  const double inf = std::numeric_limits<double>::infinity();
+  const double Lx = options.period[0], Ly = options.period[1], Lz = options.period[2];
+  const double hx = Lx > 0.0 ? 0.5 * Lx : inf;
+  const double hy = Ly > 0.0 ? 0.5 * Ly : inf;
+  const double hz = Lz > 0.0 ? 0.5 * Lz : inf;
+  const double gx_body = options.gravity[0], gy_body = options.gravity[1], gz_body = options.gravity[2];
+
+  double min_signal_time = inf;
+  std::uint64_t interacting = 0;
+
+#pragma omp parallel for schedule(dynamic, 128) reduction(min : min_signal_time) reduction(+ : interacting)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if ((flags[i] & (particle_fixed | particle_ejected)) != 0) {
+      ax_out[i] = ay_out[i] = az_out[i] = 0.0;
+      drho_out[i] = du_out[i] = dalpha_out[i] = 0.0;
+      neighbour_count[i] = 0;
+      continue;
+    }
+    const double xi = x[i], yi = y[i], zi = z[i];
+    const double vxi = vx[i], vyi = vy[i], vzi = vz[i];
+    const double hi = h[i], ci = c[i], rhoi = rho[i], pr2i = pr2[i];
+    const double alphai = use_switch ? alpha[i] : av.alpha;
+
+    double ax = 0.0, ay = 0.0, az = 0.0;
+    double mv_grad = 0.0;  // sum_j m_j v_ij . grad_i W_ij  (energy equation)
+    double vv_grad = 0.0;  // sum_j (m_j/rho_j) v_ij . grad_i W_ij  (= -div v_i, continuity)
+    double viscous = 0.0;  // sum_j m_j Pi_ij v_ij . grad_i W_ij
+    double max_mu = 0.0;   // max_j |mu_ij| over approaching pairs
+    std::uint64_t count = 0;
+
+    // Solid-only accumulators (dead code, removed by the compiler, for fluids).
+    double sixx = 0, sixy = 0, sixz = 0, siyy = 0, siyz = 0, sizz = 0, inv_rho2i = 0;
+    double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (v_j - v_i) (x) grad W
+    double M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (x_j - x_i) (x) grad W
+    double U[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum m_j (v_j - v_i) (x) grad W
+    if constexpr (solid) {
+      inv_rho2i = 1.0 / (rhoi * rhoi);
+      sixx = sxx[i] * inv_rho2i;
+      sixy = sxy[i] * inv_rho2i;
+      sixz = sxz[i] * inv_rho2i;
+      siyy = syy[i] * inv_rho2i;
+      siyz = syz[i] * inv_rho2i;
+      sizz = -(sxx[i] + syy[i]) * inv_rho2i;
+    }
+
+    for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+      const std::size_t j = neighbours[k];
+      const double dx = wrap(xi - x[j], Lx, hx);
+      const double dy = wrap(yi - y[j], Ly, hy);
+      const double dz = wrap(zi - z[j], Lz, hz);
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double hsum = hi + h[j];
+      if (r2 >= hsum * hsum || r2 <= 0.0) continue;
+      ++count;
+      const double r = std::sqrt(r2);
+      const double hbar = 0.5 * hsum;
+      const double dwdr_over_r = Kernel::derivative(r, hbar) / r;
+      const double gx = dx * dwdr_over_r, gy = dy * dwdr_over_r, gz = dz * dwdr_over_r;  // grad_i W_ij
+      const double dvx = vxi - vx[j], dvy = vyi - vy[j], dvz = vzi - vz[j];
+      const double v_dot_g = dvx * gx + dvy * gy + dvz * gz;
+      const double v_dot_x = dvx * dx + dvy * dy + dvz * dz;
+      const double mj = mass[j];
+
+      // Monaghan & Gingold (1983) viscosity, only for approaching pairs.
+      double pi_ij = 0.0;
+      if (v_dot_x < 0.0) {
+        const double mu = hbar * v_dot_x / (r2 + eps * hbar * hbar);
+        const double cbar = 0.5 * (ci + c[j]);
+        const double rhobar = 0.5 * (rhoi + rho[j]);
+        const double alpha_ij = use_switch ? 0.5 * (alphai + alpha[j]) : av.alpha;
+        const double beta_ij = use_switch ? beta_over_alpha * alpha_ij : av.beta;
+        pi_ij = (-alpha_ij * cbar * mu + beta_ij * mu * mu) / rhobar;
+        max_mu = std::max(max_mu, -mu);
+      }
+
+      const double f = (pr2i + pr2[j]) + pi_ij;  // symmetric in i, j
+      ax -= mj * f * gx;
+      ay -= mj * f * gy;
+      az -= mj * f * gz;
+      mv_grad += mj * v_dot_g;
+      vv_grad += volume[j] * v_dot_g;
+      viscous += mj * pi_ij * v_dot_g;
+
+      if constexpr (solid) {
+        // + m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad_i W_ij
+        const double inv_rho2j = 1.0 / (rho[j] * rho[j]);
+        const double txx = sixx + sxx[j] * inv_rho2j;
+        const double txy = sixy + sxy[j] * inv_rho2j;
+        const double txz = sixz + sxz[j] * inv_rho2j;
+        const double tyy = siyy + syy[j] * inv_rho2j;
+        const double tyz = siyz + syz[j] * inv_rho2j;
+        const double tzz = sizz - (sxx[j] + syy[j]) * inv_rho2j;
+        ax += mj * (txx * gx + txy * gy + txz * gz);
+        ay += mj * (txy * gx + tyy * gy + tyz * gz);
+        az += mj * (txz * gx + tyz * gy + tzz * gz);
+        const double vj = mj / rho[j];
+        const double d[3] = {-dvx, -dvy, -dvz};  // v_j - v_i
+        const double e[3] = {-dx, -dy, -dz};     // x_j - x_i
+        const double g[3] = {gx, gy, gz};
+        for (int a = 0; a < 3; ++a) {
+          for (int b = 0; b < 3; ++b) {
+            G[3 * a + b] += vj * d[a] * g[b];
+            M[3 * a + b] += vj * e[a] * g[b];
+            U[3 * a + b] += mj * d[a] * g[b];
+          }
+        }
+      }
+    }
+
+    ax_out[i] = ax + gx_body;
+    ay_out[i] = ay + gy_body;
+    az_out[i] = az + gz_body;
+    drho_out[i] = rhoi * vv_grad;
+    double du = pr2i * mv_grad + 0.5 * viscous;
+
+    if constexpr (solid) {
+      // Work of the deviatoric stress with the uncorrected gradient (energy-consistent), and the
+      // Randles & Libersky (1996) corrected gradient grad v = G . M^-1 for the stress rate.
+      const double inv_rhoi = 1.0 / rhoi;
+      for (double& u : U) u *= inv_rhoi;
+      const double s_zz = -(sxx[i] + syy[i]);
+      du += inv_rhoi * (sxx[i] * U[0] + syy[i] * U[4] + s_zz * U[8] + sxy[i] * (U[1] + U[3]) +
+                        sxz[i] * (U[2] + U[6]) + syz[i] * (U[5] + U[7]));
+      if (gradients != nullptr) {
+        double L[9];
+        double corrected[9];
+        if (invert3(M, L)) {
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+              corrected[3 * a + b] = G[3 * a] * L[b] + G[3 * a + 1] * L[3 + b] + G[3 * a + 2] * L[6 + b];
+            }
+          }
+        } else {
+          for (int k = 0; k < 9; ++k) corrected[k] = G[k];
+        }
+        for (int k = 0; k < 9; ++k) {
+          gradients->corrected[k][i] = corrected[k];
+          gradients->uncorrected[k][i] = U[k];
+        }
+      }
+    }
+    du_out[i] = du;
+
+    if (use_switch) {
+      // Morris & Monaghan (1997): decay towards alpha_min on tau = h / (l c), growth in compression.
+      const double div_v = -vv_grad;
+      const double source = std::max(-div_v, 0.0) * (av.alpha - alphai);
+      dalpha_out[i] = -(alphai - av.alpha_min) * av.decay_factor * ci / hi + source;
+    } else {
+      dalpha_out[i] = 0.0;
+    }
+
+    const double beta_i = use_switch ? beta_over_alpha * alphai : av.beta;
+    const double signal = ci + 1.2 * (alphai * ci + beta_i * max_mu);
+    if (signal > 0.0) min_signal_time = std::min(min_signal_time, hi / signal);
+    interacting += count;
+    neighbour_count[i] = static_cast<std::uint32_t>(count);
+  }
+  return RateSummary{min_signal_time, interacting};
+}
+
+}  // namespace
+
+RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                          RateWorkspace& workspace, VelocityGradients* gradients) {
+  if (gradients != nullptr) gradients->resize(particles.size());
+  return with_kernel(options.kernel, [&](auto kernel) {
+    using K = decltype(kernel);
+    return options.solid ? rates_impl<K, true>(particles, pairs, options, workspace, gradients)
+                         : rates_impl<K, false>(particles, pairs, options, workspace, gradients);
+  });
+}
+
+}  // namespace craterkit::sph

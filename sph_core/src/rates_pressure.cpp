@@ -1,0 +1,33 @@
+#include "craterkit/sph/rates_pressure.hpp"
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace craterkit::sph {
+
+void update_pressure(Particles& p, std::span<const EquationOfState> equations_of_state,
+                     RateWorkspace& workspace) {
+  const auto n = static_cast<std::int64_t>(p.size());
+  for (const auto id : p.material) {
+    if (id >= equations_of_state.size()) {
+      throw std::out_of_range("particle material id " + std::to_string(id) + " has no equation of state (" +
+                              std::to_string(equations_of_state.size()) + " materials)");
+    }
+  }
+  workspace.pressure_over_density_squared.resize(p.size());
+  workspace.volume.resize(p.size());
+  double* pr2 = workspace.pressure_over_density_squared.data();
+  double* volume = workspace.volume.data();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const EosState state = evaluate(equations_of_state[p.material[i]], p.density[i], p.specific_energy[i]);
+    p.pressure[i] = state.pressure;
+    p.sound_speed[i] = state.sound_speed;
+    pr2[i] = state.pressure / (p.density[i] * p.density[i]);
+    volume[i] = p.mass[i] / p.density[i];
+  }
+}
+
+}  // namespace craterkit::sph

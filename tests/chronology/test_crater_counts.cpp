@@ -1,0 +1,117 @@
+// Crater-count readers: CSV, craterstats .diam and CraterTools .scc, with errors that name the line.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "craterkit/chronology/crater_counts.hpp"
+#include "craterkit/common/data_path.hpp"
+#include "craterkit/common/input_error.hpp"
+
+namespace ck = craterkit::chronology;
+
+namespace {
+
+std::string temp_file(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / ("ck_counts_" + name);
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+// Expects InputError whose message contains every fragment.
+void expect_error(const std::string& path, std::initializer_list<std::string> fragments) {
+  try {
+    ck::read_crater_counts(path);
+    FAIL() << "expected InputError for " << path;
+  } catch (const craterkit::InputError& e) {
+    for (const auto& f : fragments) EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+TEST(CraterCounts, CsvUnbinnedWithArea) {
+  const auto path =
+      temp_file("a.csv", "# unit A\n# area_km2 = 0.25\ndiameter_m,fraction,lon\n20.5,1,3\n31,0.5,4\n");
+  const auto c = ck::read_crater_counts(path);
+  EXPECT_DOUBLE_EQ(c.area, 0.25e6);
+  ASSERT_EQ(c.diameters.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.diameters[1], 31.0);
+  EXPECT_DOUBLE_EQ(c.fractions[1], 0.5);
+  EXPECT_FALSE(c.binned());
+}
+
+TEST(CraterCounts, CsvBinnedCumulative) {
+  const auto path = temp_file("b.csv", "# area_m2 = 2.7e6\ndiameter_km,cumulative_count\n0.02,77\n0.1,20\n");
+  const auto c = ck::read_crater_counts(path);
+  ASSERT_TRUE(c.binned());
+  EXPECT_DOUBLE_EQ(c.bins[0].diameter, 20.0);
+  EXPECT_DOUBLE_EQ(c.bins[1].cumulative_count, 20.0);
+}
+
+TEST(CraterCounts, CraterstatsDiam) {
+  const auto path =
+      temp_file("c.diam", "# sample\narea = 0.5\n#\ncrater = {diameter, fraction\n0.021, 1\n0.035, 0.8\n}\n");
+  const auto c = ck::read_crater_counts(path);
+  EXPECT_DOUBLE_EQ(c.area, 0.5e6);
+  ASSERT_EQ(c.diameters.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.diameters[0], 21.0);
+  EXPECT_DOUBLE_EQ(c.fractions[1], 0.8);
+}
+
+TEST(CraterCounts, CraterToolsScc) {
+  const auto path =
+      temp_file("d.scc",
+                "# Spatial crater count\na-axis radius = 0.448 <km>\n"
+                "unit_boundary = {vertex, sub_area, tag, lon, lat\n1\t1\text\t0\t0\n2\t1\text\t1\t1\n}\n"
+                "Total_area = 0.3 <km^2>\n# crater_diameters:\n"
+                "crater = {diam, fraction, lon, lat, topo_scale_factor\n"
+                "0.04\t1\t10\t2\t1\n0.025\t0.5\t11\t3\t1\n}\n");
+  const auto c = ck::read_crater_counts(path);
+  EXPECT_DOUBLE_EQ(c.area, 0.3e6);
+  ASSERT_EQ(c.diameters.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.diameters[0], 40.0);
+  EXPECT_DOUBLE_EQ(c.fractions[1], 0.5);
+}
+
+TEST(CraterCounts, MalformedFilesNameTheLine) {
+  expect_error(temp_file("e1.csv", "# area_km2 = 1\ndiameter_m\n20\n3x\n"), {"e1.csv:4", "'3x'"});
+  expect_error(temp_file("e2.csv", "# area_km2 = 1\ndiameter_m\n20\n-5\n"), {"e2.csv:4", "-5"});
+  expect_error(temp_file("e3.csv", "diameter_m\n20\n"), {"area"});
+  expect_error(temp_file("e4.csv", "# area_km2 = 1\nsize\n20\n"), {"e4.csv:2", "diameter_m"});
+  expect_error(temp_file("e5.diam", "area = 1\ncrater = {diameter\n0.1\n0.2 ,\nfoo\n}\n"),
+               {"e5.diam:5", "'foo'"});
+  expect_error(temp_file("e6.diam", "area = 1\ncrater = {diameter\n0.1\n"), {"e6.diam:2", "never closed"});
+  expect_error(temp_file("e7.scc", "crater = {diam, fraction\n0.1\t1\n}\n"), {"Total_area"});
+  expect_error(temp_file("e8.scc", "Total_area = 1 <km^2>\ncrater = {diam, fraction\n0.1\t1.5\n}\n"),
+               {"e8.scc:3", "fraction"});
+  expect_error(temp_file("e9.csv", "# area_km2 = 1\ndiameter_m,cumulative_count\n10,5\n20,9\n"),
+               {"e9.csv:4", "non-increasing"});
+  expect_error(temp_file("e10.txt", "x"), {"extension"});
+}
+
+TEST(CraterCounts, ShippedCountFilesParse) {
+  const auto dir = craterkit::data_file("craters");
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const auto ext = entry.path().extension();
+    if (ext != ".csv" && ext != ".diam" && ext != ".scc") continue;
+    const auto c = ck::read_crater_counts(entry.path().string());
+    EXPECT_GT(c.area, 0.0) << entry.path();
+    EXPECT_TRUE(c.binned() || !c.diameters.empty()) << entry.path();
+    ++files;
+  }
+  EXPECT_GE(files, 3);
+}
+
+TEST(CraterCounts, ShippedSyntheticUnitIsTheSameInAllFormats) {
+  const auto csv = ck::read_crater_counts(craterkit::data_file("craters/ryugu_synthetic_unit.csv").string());
+  for (const char* other : {"craters/ryugu_synthetic_unit.diam", "craters/ryugu_synthetic_unit.scc"}) {
+    const auto c = ck::read_crater_counts(craterkit::data_file(other).string());
+    EXPECT_DOUBLE_EQ(c.area, csv.area) << other;
+    ASSERT_EQ(c.diameters.size(), csv.diameters.size()) << other;
+    for (std::size_t i = 0; i < c.diameters.size(); ++i) {
+      EXPECT_NEAR(c.diameters[i], csv.diameters[i], 0.006) << other << " row " << i;  // km files keep 0.01 m
+    }
+  }
+}

@@ -1,0 +1,139 @@
+#!/usr/bin/env bash
+# Command-line contract of `craterkit scale`, `fit` and `run` (scripts depend on it): exit status 0 on
+# success and 2 on bad arguments with a message naming the flag, JSON keys present, the inverse round
+# trip, atomic output and nothing written on an error. Usage: test_cli.sh /path/to/craterkit
+set -u
+CK="$1"
+PY=/usr/bin/python3
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# expect_status STATUS PATTERN ARGS... : runs craterkit, checks the exit status and that stderr matches PATTERN
+expect_status() {
+  local want=$1 pattern=$2
+  shift 2
+  "$CK" "$@" >"$WORK/out" 2>"$WORK/err"
+  local got=$?
+  [ "$got" -eq "$want" ] || fail "craterkit $* exited $got, expected $want ($(cat "$WORK/err"))"
+  if [ -n "$pattern" ] && ! grep -q -- "$pattern" "$WORK/err"; then
+    fail "craterkit $*: stderr lacks '$pattern': $(cat "$WORK/err")"
+  fi
+}
+
+IMPACT=(--impactor-density 2700 --velocity 5000 --target-density 1300 --gravity 1.4e-4 --strength 0.05)
+HH=(--H1 0.60 --H2 0.25 --mu 0.44 --nu 0.4)
+
+# scale: text and JSON, with the keys of the contract
+expect_status 0 "" scale --impactor-radius 0.1 "${IMPACT[@]}" "${HH[@]}"
+grep -q "crater radius" "$WORK/out" || fail "scale text output lacks the crater radius"
+expect_status 0 "" scale --impactor-radius 0.1 "${IMPACT[@]}" "${HH[@]}" --json
+cp "$WORK/out" "$WORK/hh.json"
+$PY - "$WORK/hh.json" <<'PYEOF' || fail "scale --json lacks keys"
+import json, sys
+d = json.load(open(sys.argv[1]))
+for key in ("crater_radius", "impactor_radius", "pi_R", "pi_2", "pi_3", "regime"):
+    assert key in d, key
+assert d["regime"] in ("gravity", "strength", "transitional")
+PYEOF
+
+# the Holsapple form with the converted constants gives the same radius
+K2=$($PY -c "print(repr((0.60/0.25)**(2/0.44)))")
+expect_status 0 "" scale --impactor-radius 0.1 "${IMPACT[@]}" --K1 0.60 --K2 "$K2" --mu 0.44 --nu 0.4 --json
+$PY - "$WORK/hh.json" "$WORK/out" <<'PYEOF' || fail "Holsapple and HH2011 forms disagree on the CLI"
+import json, sys
+a, b = (json.load(open(p))["crater_radius"] for p in sys.argv[1:3])
+assert abs(a / b - 1) < 1e-12, (a, b)
+PYEOF
+
+# inverse round trip through the CLI
+R=$($PY -c "import json; print(repr(json.load(open('$WORK/hh.json'))['crater_radius']))")
+expect_status 0 "" scale --crater-radius "$R" "${IMPACT[@]}" "${HH[@]}" --json
+$PY - "$WORK/out" <<'PYEOF' || fail "scale --crater-radius does not round-trip"
+import json, sys
+assert abs(json.load(open(sys.argv[1]))["impactor_radius"] / 0.1 - 1) < 1e-9
+PYEOF
+
+# --params with an explicit override
+expect_status 0 "" scale --params jutzi2022_ryugu --impactor-radius 0.1 --impactor-density 2700 --velocity 5000 \
+  --gravity 1.4e-4 --json
+expect_status 0 "" scale --params jutzi2022_ryugu --impactor-radius 0.1 --impactor-density 2700 --velocity 5000 \
+  --gravity 1.4e-4 --strength 0.05 --target-density 1300 --json
+$PY - "$WORK/hh.json" "$WORK/out" <<'PYEOF' || fail "--params jutzi2022_ryugu differs from the same constants as flags"
+import json, sys
+a, b = (json.load(open(p))["crater_radius"] for p in sys.argv[1:3])
+assert abs(a / b - 1) < 1e-12, (a, b)
+PYEOF
+
+# errors: exit 2 and the flag named
+expect_status 2 "cannot be mixed" scale --impactor-radius 0.1 "${IMPACT[@]}" --K1 0.6 --H2 0.25 --mu 0.44 --nu 0.4
+expect_status 2 "--velocity" scale --impactor-radius 0.1 --impactor-density 2700 --velocity fast \
+  --target-density 1300 --gravity 1.4e-4 --strength 0.05 "${HH[@]}"
+expect_status 2 "--gravity is required" scale --impactor-radius 0.1 --impactor-density 2700 --velocity 5000 \
+  --target-density 1300 --strength 0.05 "${HH[@]}"
+expect_status 2 "--impactor-radius -1" scale --impactor-radius -1 "${IMPACT[@]}" "${HH[@]}"
+expect_status 2 "--mu" scale --impactor-radius 0.1 "${IMPACT[@]}" --H1 0.6 --H2 0.25 --nu 0.4
+expect_status 2 "not known" scale --params no_such_set --impactor-radius 0.1 "${IMPACT[@]}"
+expect_status 2 "--nu -1" scale --impactor-radius 0.1 "${IMPACT[@]}" --H1 0.6 --H2 0.25 --mu 0.44 --nu -1
+expect_status 0 "" scale --help
+
+# fit: JSON contract, --out written atomically, nothing written on an error
+TABLE="$CRATERKIT_DATA_DIR/examples/radii_example.csv"
+expect_status 0 "" fit "$TABLE" --form hh2011 --out "$WORK/fit.json" --json
+$PY - "$WORK/fit.json" "$WORK/out" <<'PYEOF' || fail "fit JSON lacks the contract keys"
+import json, sys
+written, printed = (json.load(open(p)) for p in sys.argv[1:3])
+assert written == printed
+for name in ("H1", "H2", "mu", "nu"):
+    p = written["parameters"][name]
+    assert "value" in p and "sigma" in p, name
+for key in ("chi2", "dof", "residuals"):
+    assert key in written, key
+assert written["dof"] == 32 - 4
+PYEOF
+ls -a "$WORK" | grep -q '\.tmp\.' && fail "a temporary file was left behind"
+expect_status 0 "" fit "$TABLE" --fix nu=0.4 --json
+$PY - "$WORK/out" <<'PYEOF' || fail "fixed parameter not reported with sigma 0"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["form"] == "holsapple"
+assert d["parameters"]["nu"]["value"] == 0.4 and d["parameters"]["nu"]["sigma"] == 0
+assert set(d["parameters"]) == {"K1", "K2", "mu", "nu"}
+PYEOF
+# --fix takes one NAME=VALUE per flag and never swallows the table that follows it
+expect_status 0 "" fit --fix nu=0.4 "$TABLE" --json
+expect_status 2 "mu=0.44" fit "$TABLE" --fix nu=0.4 mu=0.44
+# the fitted law feeds back into scale with --fit
+expect_status 0 "" scale --fit "$WORK/fit.json" --impactor-radius 0.1 "${IMPACT[@]}" --json
+
+printf 'impactor_radius,impactor_density,velocity,target_density,gravity,crater_radius\n1,2,3,4,5,6\n' >"$WORK/bad.csv"
+expect_status 2 "'strength'" fit "$WORK/bad.csv" --out "$WORK/never.json"
+[ -e "$WORK/never.json" ] && fail "fit wrote its output despite an error"
+expect_status 2 "--form" fit "$TABLE" --form cubic --out "$WORK/never.json"
+expect_status 2 "--fix" fit "$TABLE" --fix nu --out "$WORK/never.json"
+expect_status 2 "'zeta'" fit "$TABLE" --fix zeta=1 --out "$WORK/never.json"
+[ -e "$WORK/never.json" ] && fail "fit wrote its output despite an error"
+expect_status 2 "" fit
+expect_status 0 "" fit --help
+
+# run: text, JSON and --out
+expect_status 0 "" run --out "$WORK/run"
+[ -s "$WORK/run/scaling_fit.json" ] && [ -s "$WORK/run/sci_example.json" ] || fail "run --out did not write its files"
+expect_status 0 "" run --json
+$PY - "$WORK/out" <<'PYEOF' || fail "run --json is not the expected object"
+import json, sys
+d = json.load(open(sys.argv[1]))
+rows = d["sci_example"]["cohesions"]
+assert rows[0]["strength"] == 0.05
+assert abs(rows[0]["crater_radius"] - 7.25) < 0.8
+assert "parameters" in d["scaling_fit"]
+PYEOF
+: >"$WORK/file"
+expect_status 2 "--out" run --out "$WORK/file"
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures check(s) failed"
+  exit 1
+fi
+echo "all CLI checks passed"
