@@ -51,8 +51,10 @@ nlohmann::json summary_json(const sph::SimulationSummary& s) {
 }
 
 void run_simulate(const SimulateOptions& options) {
-  if (options.threads < 0) throw InputError("--threads " + std::to_string(options.threads) + ": must be >= 1");
-  if (options.resume && options.out.empty()) throw InputError("--resume needs --out DIR (where the checkpoint is)");
+  if (options.threads < 0)
+    throw InputError("--threads " + std::to_string(options.threads) + ": must be >= 1");
+  if (options.resume && options.out.empty())
+    throw InputError("--resume needs --out DIR (where the checkpoint is)");
   const sph::SimulationConfig config = sph::load_simulation_config(options.config);
   if (options.threads > 0) omp_set_num_threads(options.threads);
   sph::RunOptions run;
@@ -65,12 +67,14 @@ void run_simulate(const SimulateOptions& options) {
     return;
   }
   fmt::print("{} ({}): {} particles, {} steps to t = {:.6g} s in {:.3f} s wall on {} threads\n", summary.name,
-             summary.setup, summary.particles, summary.steps, summary.time, summary.wall_seconds, summary.threads);
+             summary.setup, summary.particles, summary.steps, summary.time, summary.wall_seconds,
+             summary.threads);
   fmt::print("  {:.4g} particle updates/s, {:.1f} neighbours/particle, {:.0f} bytes/particle\n",
              summary.particle_updates_per_second, summary.mean_neighbours, summary.bytes_per_particle);
-  fmt::print("  relative energy error {:.3e}, relative momentum error {:.3e}\n", summary.relative_energy_error,
-             summary.relative_momentum_error);
-  if (!summary.checkpoint.empty()) fmt::print("  output in {} (checkpoint {})\n", options.out, summary.checkpoint);
+  fmt::print("  relative energy error {:.3e}, relative momentum error {:.3e}\n",
+             summary.relative_energy_error, summary.relative_momentum_error);
+  if (!summary.checkpoint.empty())
+    fmt::print("  output in {} (checkpoint {})\n", options.out, summary.checkpoint);
   fmt::print("{}", summary.phase_table);
 }
 
@@ -86,8 +90,10 @@ void add_simulate_command(CLI::App& parent) {
   sub->add_flag("--json", options->json, "Print the final summary as a JSON object");
   sub->add_flag("--quiet", options->quiet, "No progress line");
   sub->footer(
-      "Prints a progress line on stderr and per-phase timings at the end. Snapshots are HDF5 with XDMF sidecars "
-      "(open snapshots.xdmf in ParaView/VisIt). Exit status 2 for a bad configuration (the message names the key).");
+      "Prints a progress line on stderr and per-phase timings at the end. Snapshots are HDF5 with XDMF "
+      "sidecars "
+      "(open snapshots.xdmf in ParaView/VisIt). Exit status 2 for a bad configuration (the message names the "
+      "key).");
   sub->callback([options] { run_simulate(*options); });
 }
 

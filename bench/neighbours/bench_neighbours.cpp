@@ -6,8 +6,8 @@
 //   bench_neighbours --benchmark_filter=... --benchmark_min_time=2
 //
 // Arguments of each run: particles, layout (0 lattice, 1 scattered, 2 scattered with 10x h,
-// 3 scattered plus one particle very far), algorithm (0
-// cell list, 1 octree), threads, skin in percent, octree leaf size.
+// 3 scattered plus one particle very far), algorithm (0 cell list, 1 octree), threads, skin in percent,
+// octree leaf size.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -118,7 +118,7 @@ void arguments(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_Build)->Apply(arguments);
 
-// Octree leaf size (particles per leaf) and Verlet skin, at 1e6 lattice particles on 1 thread.
+// One particle beyond the Morton resolution of the bulk (octree median-split fallback).
 BENCHMARK(BM_Build)
     ->Name("BM_OctreeFarParticle")
     ->ArgsProduct({{100000, 1000000}, {3}, {1}, {1, 2}, {0}, {64}})
@@ -132,6 +132,7 @@ BENCHMARK(BM_Build)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);
+// Octree leaf size (particles per leaf), then the Verlet skin, on 1 thread.
 BENCHMARK(BM_Build)
     ->ArgsProduct({{100000, 1000000}, {0, 2}, {1}, {1}, {0}, {8, 16, 32, 64, 128}})
     ->ArgNames({"n", "layout", "octree", "threads", "skin_pct", "leaf"})

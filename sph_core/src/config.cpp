@@ -198,6 +198,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       p.density = t.number("density", p.density, 0.0, inf, true);
       p.blast_energy = t.number("blast_energy", p.blast_energy, 0.0, inf, true);
       p.background_energy = t.number("background_energy", p.background_energy, 0.0, inf);
+      p.blast_radius = t.number("blast_radius", p.blast_radius, 0.0, 0.25 * p.box_size);
       t.finish();
       c.setup = p;
     } else if (setup == "sod") {

@@ -67,9 +67,13 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
 }
 
 void correct(Particles& p, double dt, const IntegratorWorkspace& w,
-             const SmoothingLengthParameters& smoothing) {
+             std::span<const std::uint32_t> neighbour_count, const SmoothingLengthParameters& smoothing) {
   const auto n = static_cast<std::int64_t>(p.size());
   const double half = 0.5 * dt;
+  const double eta2 = 2.0 * smoothing.eta;
+  const double target = 4.0 / 3.0 * 3.14159265358979323846 * eta2 * eta2 * eta2;
+  const double low = target * (1.0 - smoothing.neighbour_band),
+               high = target * (1.0 + smoothing.neighbour_band);
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -86,8 +90,8 @@ void correct(Particles& p, double dt, const IntegratorWorkspace& w,
     if (count < low || count > high) {
       factor *= std::clamp(0.5 * (1.0 + std::cbrt(target / std::max(count, 1.0))), 0.8, 1.25);
     }
-    p.smoothing_length[i] =
-        std::clamp(p.smoothing_length[i] * factor, smoothing.min_smoothing_length, smoothing.max_smoothing_length);
+    p.smoothing_length[i] = std::clamp(p.smoothing_length[i] * factor, smoothing.min_smoothing_length,
+                                       smoothing.max_smoothing_length);
   }
 }
 

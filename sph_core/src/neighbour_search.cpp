@@ -118,7 +118,6 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
     throw std::invalid_argument("neighbour search: smoothing lengths must be finite and > 0 (min " +
                                 std::to_string(h_min) + ", max " + std::to_string(h_max) + ")");
   }
-  h_max_ = h_max;
   const double reach = 2.0 * h_max * (1.0 + options_.skin);  // largest pair distance in the lists
   for (int a = 0; a < 3; ++a) {
     if (box.periodic[a] && !(box.edge(a) > 2.0 * reach)) {
@@ -518,7 +517,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
       const std::size_t room = v.size() - at;
       const std::size_t count = gather(k, v.data() + at, room);
       if (count <= room) return count;
-      v.resize(at + 2 * room + 1024);
+      v.resize(std::max(v.size() + v.size() / 2, at + 2 * room) + 1024);  // geometric growth
     }
   };
 
@@ -538,14 +537,13 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
     const auto id = std::size_t(omp_get_thread_num());
     ThreadScratch& t = scratch_[id];
     const std::size_t first = n * id / threads, last = n * (id + 1) / threads;
-    t.first = first;
     std::size_t sampled = 0, samples = 0;
     for (std::size_t i = first; i < last; i += sample_stride, ++samples) {
       sampled += gather_into(rank_[i], t.found, 0);
     }
     t.region_size =
         samples ? std::size_t(1.03 * double(sampled) * double(last - first) / double(samples)) : 0;
-    t.region_size += 64 * (last - first > 0 ? 64 : 0);
+    if (last > first) t.region_size += 4096;  // margin for small ranges and sampling noise
 #pragma omp barrier
 #pragma omp single
     {
@@ -590,6 +588,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
         // in ascending order so that no data is overwritten before it is moved.
         for (std::size_t u = 1; u < threads; ++u) {
           const ThreadScratch& r = scratch_[u];
+          if (r.region_used == 0) continue;  // (the array may be empty: no null pointer to memmove)
           std::memmove(lists.neighbours.data() + r.final_start, lists.neighbours.data() + r.region_start,
                        r.region_used * sizeof(std::uint32_t));
         }

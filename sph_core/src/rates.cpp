@@ -50,8 +50,8 @@ inline bool invert3(const double m[9], double inv[9]) noexcept {
 }
 
 template <class Kernel, bool solid>
-RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options, RateWorkspace& workspace,
-                       VelocityGradients* gradients) {
+RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
+                       RateWorkspace& workspace, VelocityGradients* gradients) {
   const auto n = static_cast<std::int64_t>(p.size());
   const double* x = p.x.data();
   const double* y = p.y.data();
@@ -64,7 +64,8 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   const double* h = p.smoothing_length.data();
   const double* c = p.sound_speed.data();
   const double* alpha = p.viscosity_alpha.data();
-  const double* pr2 = workspace.pressure_over_density_squared.data();
+  const double* pressure = p.pressure.data();
+  const double* inv_rho = workspace.inverse_density.data();
   const double* volume = workspace.volume.data();
   workspace.neighbour_count.resize(p.size());
   std::uint32_t* neighbour_count = workspace.neighbour_count.data();
@@ -109,30 +110,25 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     }
     const double xi = x[i], yi = y[i], zi = z[i];
     const double vxi = vx[i], vyi = vy[i], vzi = vz[i];
-    const double hi = h[i], ci = c[i], rhoi = rho[i], pr2i = pr2[i];
+    const double hi = h[i], ci = c[i], rhoi = rho[i], inv_rhoi = inv_rho[i];
+    const double pr2i = pressure[i] * (inv_rhoi * inv_rhoi);  // P_i/rho_i^2, rounded as for j
     const double alphai = use_switch ? alpha[i] : av.alpha;
 
     double ax = 0.0, ay = 0.0, az = 0.0;
-    double mv_grad = 0.0;  // sum_j m_j v_ij . grad_i W_ij  (energy equation)
-    double vv_grad = 0.0;  // sum_j (m_j/rho_j) v_ij . grad_i W_ij  (= -div v_i, continuity)
+    double vv_grad = 0.0;  // sum_j (m_j/rho_j) v_ij . grad_i W_ij  (= -div v_i)
+    double mv_grad = 0.0;  // sum_j m_j v_ij . grad_i W_ij
     double viscous = 0.0;  // sum_j m_j Pi_ij v_ij . grad_i W_ij
     double max_mu = 0.0;   // max_j |mu_ij| over approaching pairs
     std::uint64_t count = 0;
 
     // Solid-only accumulators (dead code, removed by the compiler, for fluids).
-    double sixx = 0, sixy = 0, sixz = 0, siyy = 0, siyz = 0, sizz = 0, inv_rho2i = 0;
+    const double inv_rho2i = inv_rhoi * inv_rhoi;
+    const double sixx = sxx[i] * inv_rho2i, sixy = sxy[i] * inv_rho2i, sixz = sxz[i] * inv_rho2i;
+    const double siyy = syy[i] * inv_rho2i, siyz = syz[i] * inv_rho2i;
+    const double sizz = -(sxx[i] + syy[i]) * inv_rho2i;
     double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (v_j - v_i) (x) grad W
     double M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (x_j - x_i) (x) grad W
-    double U[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum m_j (v_j - v_i) (x) grad W
-    if constexpr (solid) {
-      inv_rho2i = 1.0 / (rhoi * rhoi);
-      sixx = sxx[i] * inv_rho2i;
-      sixy = sxy[i] * inv_rho2i;
-      sixz = sxz[i] * inv_rho2i;
-      siyy = syy[i] * inv_rho2i;
-      siyz = syz[i] * inv_rho2i;
-      sizz = -(sxx[i] + syy[i]) * inv_rho2i;
-    }
+    double U[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum m_j (v_j - v_i) (x) grad W (uncorrected, x rho_i)
 
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
       const std::size_t j = neighbours[k];
@@ -164,17 +160,17 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         max_mu = std::max(max_mu, -mu);
       }
 
-      const double f = (pr2i + pr2[j]) + pi_ij;  // symmetric in i, j
+      const double inv_rho2j = inv_rho[j] * inv_rho[j];
+      const double f = (pr2i + pressure[j] * inv_rho2j) + pi_ij;  // symmetric in i, j
       ax -= mj * f * gx;
       ay -= mj * f * gy;
       az -= mj * f * gz;
-      mv_grad += mj * v_dot_g;
       vv_grad += volume[j] * v_dot_g;
+      mv_grad += mj * v_dot_g;
       viscous += mj * pi_ij * v_dot_g;
 
       if constexpr (solid) {
         // + m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad_i W_ij
-        const double inv_rho2j = 1.0 / (rho[j] * rho[j]);
         const double txx = sixx + sxx[j] * inv_rho2j;
         const double txy = sixy + sxy[j] * inv_rho2j;
         const double txz = sixz + sxz[j] * inv_rho2j;
@@ -184,7 +180,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         ax += mj * (txx * gx + txy * gy + txz * gz);
         ay += mj * (txy * gx + tyy * gy + tyz * gz);
         az += mj * (txz * gx + tyz * gy + tzz * gz);
-        const double vj = mj / rho[j];
+        const double vj = volume[j];
         const double d[3] = {-dvx, -dvy, -dvz};  // v_j - v_i
         const double e[3] = {-dx, -dy, -dz};     // x_j - x_i
         const double g[3] = {gx, gy, gz};
@@ -205,13 +201,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     double du = pr2i * mv_grad + 0.5 * viscous;
 
     if constexpr (solid) {
-      // Work of the deviatoric stress with the uncorrected gradient (energy-consistent), and the
-      // Randles & Libersky (1996) corrected gradient grad v = G . M^-1 for the stress rate.
-      const double inv_rhoi = 1.0 / rhoi;
-      for (double& u : U) u *= inv_rhoi;
-      const double s_zz = -(sxx[i] + syy[i]);
-      du += inv_rhoi * (sxx[i] * U[0] + syy[i] * U[4] + s_zz * U[8] + sxy[i] * (U[1] + U[3]) +
-                        sxz[i] * (U[2] + U[6]) + syz[i] * (U[5] + U[7]));
+      // Work of the deviatoric stress with the uncorrected gradient G (energy-consistent with the
+      // momentum equation), and the Randles & Libersky (1996) corrected gradient G . M^-1 for the
+      // stress rate.
+      // U/rho_i is the uncorrected gradient; S_i/rho_i^2 : U = (1/rho_i) S_i : (U/rho_i).
+      du += sixx * U[0] + siyy * U[4] + sizz * U[8] + sixy * (U[1] + U[3]) + sixz * (U[2] + U[6]) +
+            siyz * (U[5] + U[7]);
       if (gradients != nullptr) {
         double L[9];
         double corrected[9];
@@ -226,7 +221,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         }
         for (int k = 0; k < 9; ++k) {
           gradients->corrected[k][i] = corrected[k];
-          gradients->uncorrected[k][i] = U[k];
+          gradients->uncorrected[k][i] = U[k] * inv_rhoi;
         }
       }
     }

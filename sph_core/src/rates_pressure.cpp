@@ -15,9 +15,9 @@ void update_pressure(Particles& p, std::span<const EquationOfState> equations_of
                               std::to_string(equations_of_state.size()) + " materials)");
     }
   }
-  workspace.pressure_over_density_squared.resize(p.size());
+  workspace.inverse_density.resize(p.size());
   workspace.volume.resize(p.size());
-  double* pr2 = workspace.pressure_over_density_squared.data();
+  double* inverse_density = workspace.inverse_density.data();
   double* volume = workspace.volume.data();
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
@@ -25,7 +25,7 @@ void update_pressure(Particles& p, std::span<const EquationOfState> equations_of
     const EosState state = evaluate(equations_of_state[p.material[i]], p.density[i], p.specific_energy[i]);
     p.pressure[i] = state.pressure;
     p.sound_speed[i] = state.sound_speed;
-    pr2[i] = state.pressure / (p.density[i] * p.density[i]);
+    inverse_density[i] = 1.0 / p.density[i];
     volume[i] = p.mass[i] / p.density[i];
   }
 }

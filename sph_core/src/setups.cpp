@@ -58,16 +58,21 @@ ProblemSetup make_sedov(const SedovSetup& s, double eta, double alpha) {
     }
   }
   // Kernel-weighted deposit: u_i += E W(r_i, h) / sum_j m_j W(r_j, h), so sum m_i du_i = E exactly.
+  // With blast_radius > 0 the weight is 1 inside the radius (uniform specific energy).
   auto& p = out.particles;
+  auto weight_of = [&](std::size_t i) {
+    const double r = std::sqrt(p.x[i] * p.x[i] + p.y[i] * p.y[i] + p.z[i] * p.z[i]);
+    if (s.blast_radius > 0.0) return r < s.blast_radius ? 1.0 : 0.0;
+    return CubicSpline::value(r, h);
+  };
   double weight = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double r = std::sqrt(p.x[i] * p.x[i] + p.y[i] * p.y[i] + p.z[i] * p.z[i]);
-    weight += p.mass[i] * CubicSpline::value(r, h);
+  for (std::size_t i = 0; i < p.size(); ++i) weight += p.mass[i] * weight_of(i);
+  if (!(weight > 0.0)) {
+    throw InputError("sedov.blast_radius = " + std::to_string(s.blast_radius) +
+                     ": no particle inside; use at least one particle spacing (" + std::to_string(dx) +
+                     " m)");
   }
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double r = std::sqrt(p.x[i] * p.x[i] + p.y[i] * p.y[i] + p.z[i] * p.z[i]);
-    p.specific_energy[i] += s.blast_energy * CubicSpline::value(r, h) / weight;
-  }
+  for (std::size_t i = 0; i < p.size(); ++i) p.specific_energy[i] += s.blast_energy * weight_of(i) / weight;
   out.box.lower = {-half, -half, -half};
   out.box.upper = {half, half, half};
   out.box.periodic = {true, true, true};

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 
 #include "craterkit/common/input_error.hpp"
@@ -196,7 +197,7 @@ double Simulation::bytes_per_particle() const {
                         &w.energy_rate, &w.viscosity_alpha_rate}) {
     bytes += v->capacity() * sizeof(double);
   }
-  bytes += rate_workspace_.pressure_over_density_squared.capacity() * sizeof(double);
+  bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
   bytes += rate_workspace_.volume.capacity() * sizeof(double);
   bytes += order_.capacity() * sizeof(std::uint32_t);
   return static_cast<double>(bytes) / static_cast<double>(n);
@@ -245,9 +246,7 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
     sim = std::make_unique<Simulation>(config, std::move(problem), std::move(particles), attributes);
     summary.resumed = true;
   } else {
-    auto scope_start = std::chrono::steady_clock::now();
     sim = std::make_unique<Simulation>(config, std::move(problem));
-    (void)scope_start;
   }
   auto& timers = sim->timers();
   const auto& snapshot_times = config.output.snapshot_times;

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <parallel/algorithm>
 #include <stdexcept>
+#if __has_include(<parallel/algorithm>)  // libstdc++ parallel mode (OpenMP); plain std::sort otherwise
+#include <parallel/algorithm>
+#define CRATERKIT_GNU_PARALLEL_SORT 1
+#endif
 
 namespace craterkit::sph {
 
@@ -61,11 +64,13 @@ void morton_keys(std::span<const double> x, std::span<const double> y, std::span
 void sort_keyed_indices(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items) {
   // Nearly sorted input (particles re-sorted every few steps) is common: check first, it is O(n).
   if (std::is_sorted(items.begin(), items.end())) return;
+#ifdef CRATERKIT_GNU_PARALLEL_SORT
   if (items.size() > 50000) {
     __gnu_parallel::sort(items.begin(), items.end());
-  } else {
-    std::sort(items.begin(), items.end());
+    return;
   }
+#endif
+  std::sort(items.begin(), items.end());
 }
 
 void curve_order(std::span<const double> x, std::span<const double> y, std::span<const double> z,

@@ -15,12 +15,12 @@
 namespace engine_test {
 
 struct SedovMeasurement {
-  double shock_radius;         // measured, m
-  double analytic_radius;      // xi0 (E t^2 / rho)^(1/5)
-  double peak_density;         // of the binned profile
-  double profile_l1;           // mean |rho - rho_Sedov| within 1.2 r_s
-  double energy_error;         // relative
-  double momentum_error;       // relative
+  double shock_radius;     // measured, m
+  double analytic_radius;  // xi0 (E t^2 / rho)^(1/5)
+  double peak_density;     // of the binned profile
+  double profile_l1;       // mean |rho - rho_Sedov| within 1.2 r_s
+  double energy_error;     // relative
+  double momentum_error;   // relative
   std::uint64_t steps;
   double mean_neighbours;
 };
@@ -30,6 +30,7 @@ inline SedovMeasurement run_sedov(int particles_per_side) {
   SimulationConfig config;
   SedovSetup setup;
   setup.particles_per_side = particles_per_side;
+  setup.blast_radius = 0.1;  // uniform deposit, as data/examples/sedov.toml
   config.setup = setup;
   config.run.end_time = 0.05;
   config.smoothing.max_smoothing_length = 0.1;
@@ -59,7 +60,8 @@ inline SedovMeasurement run_sedov(int particles_per_side) {
   m.profile_l1 = l1 / l1_count;
   std::vector<double> profile(bins, 0.0);
   for (std::size_t b = 0; b < bins; ++b) profile[b] = count[b] > 0 ? sum[b] / count[b] : 0.0;
-  const auto peak = static_cast<std::size_t>(std::max_element(profile.begin(), profile.end()) - profile.begin());
+  const auto peak =
+      static_cast<std::size_t>(std::max_element(profile.begin(), profile.end()) - profile.begin());
   m.peak_density = profile[peak];
   const double half = 0.5 * (m.peak_density + 1.0);
   m.shock_radius = 0.0;

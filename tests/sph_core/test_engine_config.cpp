@@ -56,9 +56,11 @@ TEST(SimulationConfig, OutOfRangeAndWrongTypesAreNamed) {
   const auto courant = error_of(minimal + "[time_step]\ncourant = 1.5\n");
   EXPECT_NE(courant.find("time_step.courant"), std::string::npos);
   EXPECT_NE(courant.find("1.5"), std::string::npos);
-  EXPECT_NE(error_of(minimal + "[viscosity]\nswitch = \"magic\"\n").find("viscosity.switch"), std::string::npos);
+  EXPECT_NE(error_of(minimal + "[viscosity]\nswitch = \"magic\"\n").find("viscosity.switch"),
+            std::string::npos);
   EXPECT_NE(error_of(minimal + "[kernel]\neta = \"big\"\n").find("kernel.eta"), std::string::npos);
-  EXPECT_NE(error_of("[problem]\nsetup = \"sod\"\n[run]\nend_time = -1\n").find("run.end_time"), std::string::npos);
+  EXPECT_NE(error_of("[problem]\nsetup = \"sod\"\n[run]\nend_time = -1\n").find("run.end_time"),
+            std::string::npos);
   EXPECT_NE(error_of("[problem]\nsetup = \"sod\"\n").find("run.end_time"), std::string::npos);
   EXPECT_NE(error_of(minimal + "[output]\nsnapshot_times = [0.1, 0.05]\n").find("output.snapshot_times"),
             std::string::npos);
@@ -67,5 +69,6 @@ TEST(SimulationConfig, OutOfRangeAndWrongTypesAreNamed) {
 
 TEST(SimulationConfig, SetupTableMustMatchTheProblem) {
   EXPECT_NE(error_of(minimal + "[sedov]\nparticles_per_side = 20\n").find("[sedov]"), std::string::npos);
-  EXPECT_NE(error_of("[problem]\nsetup = \"blast\"\n[run]\nend_time = 1\n").find("problem.setup"), std::string::npos);
+  EXPECT_NE(error_of("[problem]\nsetup = \"blast\"\n[run]\nend_time = 1\n").find("problem.setup"),
+            std::string::npos);
 }

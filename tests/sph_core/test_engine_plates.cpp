@@ -57,10 +57,11 @@ void check_plates(double impact_velocity) {
   u_target /= n_target;
   p_projectile /= n_projectile;
   u_projectile /= n_projectile;
-  std::printf("plates %.0f m/s: match P %.4g GPa u %.4g m/s; target P %.4g GPa u %.4g m/s; projectile P %.4g GPa "
-              "u %.4g m/s (%.0f + %.0f particles)\n",
-              impact_velocity, match.pressure * 1e-9, match.particle_velocity, p_target * 1e-9, u_target,
-              p_projectile * 1e-9, u_projectile, n_target, n_projectile);
+  std::printf(
+      "plates %.0f m/s: match P %.4g GPa u %.4g m/s; target P %.4g GPa u %.4g m/s; projectile P %.4g GPa "
+      "u %.4g m/s (%.0f + %.0f particles)\n",
+      impact_velocity, match.pressure * 1e-9, match.particle_velocity, p_target * 1e-9, u_target,
+      p_projectile * 1e-9, u_projectile, n_target, n_projectile);
   EXPECT_NEAR(p_target / match.pressure, 1.0, 0.05);
   EXPECT_NEAR(u_target / match.particle_velocity, 1.0, 0.05);
   EXPECT_NEAR(p_projectile / match.pressure, 1.0, 0.05);
@@ -69,6 +70,10 @@ void check_plates(double impact_velocity) {
 
 }  // namespace
 
-TEST(PlateImpact, AluminiumOnBasaltAt2KilometresPerSecond) { check_plates(2000.0); }
+TEST(PlateImpact, AluminiumOnBasaltAt2KilometresPerSecond) {
+  check_plates(2000.0);
+}
 
-TEST(PlateImpact, AluminiumOnBasaltAt5KilometresPerSecond) { check_plates(5000.0); }
+TEST(PlateImpact, AluminiumOnBasaltAt5KilometresPerSecond) {
+  check_plates(5000.0);
+}

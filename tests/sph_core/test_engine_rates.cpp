@@ -54,10 +54,10 @@ Cloud random_cloud(int n, unsigned seed, double jitter, bool random_state) {
       }
     }
   }
-  c.workspace.pressure_over_density_squared.resize(c.p.size());
+  c.workspace.inverse_density.resize(c.p.size());
   c.workspace.volume.resize(c.p.size());
   for (std::size_t k = 0; k < c.p.size(); ++k) {
-    c.workspace.pressure_over_density_squared[k] = c.p.pressure[k] / (c.p.density[k] * c.p.density[k]);
+    c.workspace.inverse_density[k] = 1.0 / c.p.density[k];
     c.workspace.volume[k] = c.p.mass[k] / c.p.density[k];
   }
   NeighbourSearch search;
@@ -117,7 +117,8 @@ TEST(Rates, UniformStateAtRestStaysAtRest) {
   Cloud c = random_cloud(12, 3, 0.0, false);
   rates(c, RateOptions{});
   for (std::size_t i = 0; i < c.p.size(); ++i) {
-    const bool interior = c.p.x[i] > 3 && c.p.x[i] < 8 && c.p.y[i] > 3 && c.p.y[i] < 8 && c.p.z[i] > 3 && c.p.z[i] < 8;
+    const bool interior =
+        c.p.x[i] > 3 && c.p.x[i] < 8 && c.p.y[i] > 3 && c.p.y[i] < 8 && c.p.z[i] > 3 && c.p.z[i] < 8;
     if (!interior) continue;
     EXPECT_NEAR(c.p.acceleration_x[i], 0.0, 1e-12);
     EXPECT_NEAR(c.p.acceleration_z[i], 0.0, 1e-12);
@@ -141,7 +142,8 @@ TEST(Rates, CorrectedVelocityGradientIsExactForLinearFields) {
   VelocityGradients g;
   rates(c, options, &g);
   for (std::size_t i = 0; i < c.p.size(); ++i) {
-    for (int k = 0; k < 9; ++k) EXPECT_NEAR(g.corrected[k][i], K[k], 1e-11) << "particle " << i << " component " << k;
+    for (int k = 0; k < 9; ++k)
+      EXPECT_NEAR(g.corrected[k][i], K[k], 1e-11) << "particle " << i << " component " << k;
   }
   // Continuity on a perfect lattice: drho/dt = -rho tr K in the interior to the (second-order)
   // discretisation error of the uncorrected SPH divergence.
@@ -213,5 +215,6 @@ TEST(Rates, PeriodicLatticeIsTranslationInvariant) {
     EXPECT_NEAR(c.p.acceleration_x[i], 0.0, 1e-12);
     EXPECT_NEAR(c.p.acceleration_y[i], 0.0, 1e-12);
   }
-  EXPECT_NEAR(static_cast<double>(c.lists.total()) / c.p.size(), 4.0 / 3.0 * 3.14159265 * std::pow(2.4, 3), 8.0);
+  EXPECT_NEAR(static_cast<double>(c.lists.total()) / c.p.size(), 4.0 / 3.0 * 3.14159265 * std::pow(2.4, 3),
+              8.0);
 }

@@ -32,7 +32,8 @@ SimulationConfig small_sod(std::uint64_t max_steps) {
 }
 
 fs::path scratch(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("craterkit_engine_" + name + "_" + std::to_string(::getpid()));
+  const auto dir =
+      fs::temp_directory_path() / ("craterkit_engine_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   return dir;
 }

@@ -9,8 +9,8 @@
 namespace {
 void report(const char* name, const engine_test::SedovMeasurement& m) {
   std::printf("%s: r_s %.5f (analytic %.5f, %+.2f %%), peak %.3f, L1 %.4f, dE %.2e, %llu steps\n", name,
-              m.shock_radius, m.analytic_radius, 100.0 * (m.shock_radius / m.analytic_radius - 1.0), m.peak_density,
-              m.profile_l1, m.energy_error, static_cast<unsigned long long>(m.steps));
+              m.shock_radius, m.analytic_radius, 100.0 * (m.shock_radius / m.analytic_radius - 1.0),
+              m.peak_density, m.profile_l1, m.energy_error, static_cast<unsigned long long>(m.steps));
 }
 }  // namespace
 

@@ -90,7 +90,7 @@ TEST_P(NeighbourSearchTest, EqualsBruteForceWithScatteredEjectaAndWideH) {
   Cloud c = random_cloud(3000, 0.005, 0.1, 0.05, 2);
   c.h[7] = 3.0;    // one particle with a huge h reaching many others
   c.x[11] = 1e9;   // one particle beyond the 2^21 Morton resolution of the bulk: the bulk shares one key
-  c.y[12] = -1e7;  // and its octree leaf exceeds leaf_size (slow but exact)
+  c.y[12] = -1e7;  // and the octree must split it at medians (split_at_median)
   NeighbourSearch search({GetParam().algorithm, GetParam().skin, 16});
   expect_equal_to_brute_force(search.build(c.input(), Box{}), brute_force(c, Box{}, GetParam().skin));
 }

@@ -83,6 +83,31 @@ TEST(SpaceFillingCurve, CurveOrderIsAPermutationThatPutsNearParticlesNear) {
   }
 }
 
+TEST(SpaceFillingCurve, LargeInputSortsKeysWithTiesInIndexOrder) {
+  // Above 50 000 points the parallel sort is used: keys must come out non-decreasing, ties by index.
+  std::mt19937_64 rng(2);
+  std::uniform_int_distribution<int> cell(0, 40);  // few distinct positions: many equal keys
+  std::vector<double> x, y, z;
+  for (int i = 0; i < 120000; ++i) {
+    x.push_back(cell(rng));
+    y.push_back(cell(rng));
+    z.push_back(cell(rng));
+  }
+  const std::vector<std::uint32_t> order = curve_order(x, y, z);
+  std::vector<std::uint64_t> keys(x.size());
+  morton_keys(x, y, z, bounding_cube(x, y, z), keys);
+  ASSERT_EQ(order.size(), x.size());
+  std::vector<bool> seen(x.size(), false);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    ASSERT_FALSE(seen[order[k]]);
+    seen[order[k]] = true;
+    if (k > 0) {
+      const std::uint64_t a = keys[order[k - 1]], b = keys[order[k]];
+      ASSERT_TRUE(a < b || (a == b && order[k - 1] < order[k])) << k;
+    }
+  }
+}
+
 TEST(SpaceFillingCurve, TiesKeepIndexOrderAndEmptyInputWorks) {
   const std::vector<double> x{1, 0, 1, 0}, y{0, 0, 0, 0}, z{0, 0, 0, 0};
   EXPECT_EQ(curve_order(x, y, z), (std::vector<std::uint32_t>{1, 3, 0, 2}));

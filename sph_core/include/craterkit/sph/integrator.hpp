@@ -30,8 +30,8 @@
 namespace craterkit::sph {
 
 struct SmoothingLengthParameters {
-  double eta = 1.2;  // h = eta (m/rho)^(1/3): about 58 neighbours within 2h for eta = 1.2
-  double min_smoothing_length = 0.0;                                       // m
+  double eta = 1.2;                   // h = eta (m/rho)^(1/3): about 58 neighbours within 2h for eta = 1.2
+  double min_smoothing_length = 0.0;  // m
   double max_smoothing_length = std::numeric_limits<double>::infinity();  // m
   double neighbour_band = 0.25;  // relative deviation of the neighbour count tolerated without steering
 };

@@ -56,7 +56,7 @@ struct Particles {
   std::vector<double> viscosity_alpha_rate;                            // dalpha/dt, 1/s
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
-  void resize(std::size_t n);        // new entries: zeros, distention 1, flags active
+  void resize(std::size_t n);  // new entries: zeros, distention 1, flags active
   void reserve(std::size_t n);
 
   // Reorders every registered field: new index k takes the particle at old index order[k].
@@ -97,9 +97,8 @@ struct Particles {
   }
   template <class Visitor>
   void for_each_field(Visitor&& visit) const {
-    const_cast<Particles*>(this)->for_each_field([&](std::string_view name, const auto& field) {
-      visit(name, field);
-    });
+    const_cast<Particles*>(this)->for_each_field(
+        [&](std::string_view name, const auto& field) { visit(name, field); });
   }
 };
 

@@ -8,15 +8,21 @@
 // does not depend on the number of threads). The pair body is instantiated per kernel and per
 // "solid" flag (deviatoric stress terms and velocity gradient on or off), chosen once per call.
 // Material physics (equations of state) is evaluated per particle before this pass
-// (rates_pressure.hpp); the pair loop only reads P/rho^2 and c.
+// (rates_pressure.hpp); the pair loop only reads P, c, 1/rho and m/rho.
 //
-// Continuity: drho_i/dt = rho_i sum_j (m_j/rho_j) v_ij . grad_i W_ij = -rho_i (div v)_i. physics.md
-// writes sum_j m_j v_ij . grad_i W_ij; the two agree where the density is smooth, but with m_j the
-// relative rate (1/rho_i) drho_i/dt of a particle much less dense than its neighbours grows as
-// 1/rho_i and drives its density to zero in finite time (seen in the hot, rarefied centre of the
-// Sedov blast, where the time step then collapsed). The volume-weighted form only lets the density
-// decay exponentially. The energy equation keeps the m_j form, so that it matches the momentum
-// equation pair by pair and total energy is conserved to the time-integration error.
+// Equations (physics.md section 1), with one deviation in the continuity equation:
+//   drho_i/dt = rho_i sum_j (m_j/rho_j) v_ij . grad_i W_ij    (= -rho_i div v_i)
+//   dv_i/dt   = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I) . grad_i W_ij + g
+//   du_i/dt   = (P_i/rho_i^2) sum_j m_j v_ij . grad_i W_ij + (1/rho_i) S_i : U_i
+//               + (1/2) sum_j m_j Pi_ij v_ij . grad_i W_ij,   U_i = (1/rho_i) sum_j m_j (v_j - v_i) (x)
+//               grad_i W_ij
+// physics.md writes sum_j m_j v_ij . grad_i W_ij for drho/dt; the two agree where the density is
+// smooth, but with m_j the relative rate (1/rho_i) drho_i/dt of a particle much less dense than its
+// neighbours grows as 1/rho_i and drives its density to zero in finite time (seen in the hot centre
+// of the Sedov blast, where the time step then collapsed). The energy equation keeps the m_j form,
+// which matches the momentum equation pair by pair: total energy is conserved to the integration
+// error. (The volume-weighted momentum form (sigma_i + sigma_j)/(rho_i rho_j) was tried as well and
+// gave a worse Sedov shock radius, docs/validation.md.)
 //
 // Momentum is conserved pairwise: the force term for (i, j) is built from expressions symmetric in
 // i and j (hbar, cbar, rhobar, P_i/rho_i^2 + P_j/rho_j^2) times grad_i W_ij = -grad_j W_ji, so the
@@ -77,8 +83,8 @@ struct VelocityGradients {
 
 // Per-particle inputs derived before the pair pass (one division per particle, not per pair).
 struct RateWorkspace {
-  std::vector<double> pressure_over_density_squared;  // P/rho^2
-  std::vector<double> volume;                         // m/rho
+  std::vector<double> inverse_density;  // 1/rho
+  std::vector<double> volume;           // m/rho
   // Output of the pair pass: pairs with r < h_i + h_j per particle (drives the smoothing length).
   std::vector<std::uint32_t> neighbour_count;
 };
@@ -92,7 +98,7 @@ struct RateSummary {
 
 // Fills acceleration_{x,y,z}, density_rate, energy_rate and viscosity_alpha_rate of every active
 // particle (zero for fixed and ejected ones). Requires pressure and sound_speed to be current and
-// workspace.pressure_over_density_squared and volume filled (update_pressure does both); fills
+// workspace.inverse_density and volume filled (update_pressure does both); fills
 // workspace.neighbour_count.
 RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                           RateWorkspace& workspace, VelocityGradients* gradients = nullptr);

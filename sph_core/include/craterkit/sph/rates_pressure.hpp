@@ -1,6 +1,6 @@
 #pragma once
 // Per-particle thermodynamic state before the pair pass: pressure and sound speed from each
-// particle's equation of state (eos.hpp), and P/rho^2 for the momentum and energy equations.
+// particle's equation of state (eos.hpp), and 1/rho and m/rho for the pair pass.
 // The material is resolved here, once per particle (std::visit over the EquationOfState variant),
 // never inside the pair loop.
 #include <span>

@@ -39,7 +39,8 @@ class Simulation {
   Simulation(SimulationConfig config, ProblemSetup problem);
   // Continues from a checkpoint: `problem` supplies the materials and the box, `particles` and
   // `attributes` (time, step, next time step, initial conserved quantities) the state.
-  Simulation(SimulationConfig config, ProblemSetup problem, Particles particles, const RunAttributes& attributes);
+  Simulation(SimulationConfig config, ProblemSetup problem, Particles particles,
+             const RunAttributes& attributes);
 
   // Advances one step, shortened so as not to pass target_time (the step then ends exactly on it).
   // Throws std::runtime_error if the time step collapses (not positive or not finite).
@@ -103,9 +104,9 @@ struct SimulationSummary {
   std::string name;
   std::string setup;
   std::size_t particles = 0;
-  std::uint64_t steps = 0;             // completed steps of the run (including before a restart)
-  std::uint64_t steps_this_run = 0;    // steps taken by this invocation
-  double time = 0.0;                   // s, simulated
+  std::uint64_t steps = 0;           // completed steps of the run (including before a restart)
+  std::uint64_t steps_this_run = 0;  // steps taken by this invocation
+  double time = 0.0;                 // s, simulated
   double wall_seconds = 0.0;
   double particle_updates_per_second = 0.0;  // particles x steps_this_run / wall_seconds
   double mean_neighbours = 0.0;
@@ -119,7 +120,7 @@ struct SimulationSummary {
   std::vector<std::string> snapshots;  // files written by this invocation
   std::string checkpoint;              // the last checkpoint written ("" if none)
   std::string conservation_log;
-  std::string phase_table;             // PhaseTimers::table()
+  std::string phase_table;  // PhaseTimers::table()
 };
 
 SimulationSummary run_simulation(const SimulationConfig& config, const RunOptions& options);

@@ -16,11 +16,11 @@
 namespace craterkit::sph {
 
 struct TimeStepParameters {
-  double courant = 0.3;                 // C
-  double acceleration_factor = 0.25;    // C_a
-  double density_change = 0.05;         // k_rho (largest relative density change per step)
-  double energy_change = 0.3;           // k_u; 0 disables the energy limit
-  double energy_floor = 0.0;            // u_floor, J/kg; the energy limit applies only when > 0
+  double courant = 0.3;               // C
+  double acceleration_factor = 0.25;  // C_a
+  double density_change = 0.05;       // k_rho (largest relative density change per step)
+  double energy_change = 0.3;         // k_u; 0 disables the energy limit
+  double energy_floor = 0.0;          // u_floor, J/kg; the energy limit applies only when > 0
   double max_step = std::numeric_limits<double>::infinity();  // s
 };
 
