@@ -1,4 +1,4 @@
-// Neighbour-list build time: cell list vs octree, 1e5 and 1e6 particles, 1 and 2 threads, on a jittered
+// Neighbour-list build time (octree), 1e5 and 1e6 particles, 1 and 2 threads, on a jittered
 // cubic lattice (h = 1.22 spacing, about 60 neighbours within h_i + h_j) and on the same lattice with 1 % of
 // the particles scattered uniformly over a 100x larger volume (ejecta). The input is sorted along the
 // space-filling curve first, as the engine keeps it. Results: bench/RESULTS_neighbours.md.
@@ -6,14 +6,14 @@
 //   bench_neighbours --benchmark_filter=... --benchmark_min_time=2
 //
 // Arguments of each run: particles, layout (0 lattice, 1 scattered, 2 scattered with 10x h,
-// 3 scattered plus one particle very far), algorithm (0 cell list, 1 octree), threads, skin in percent,
-// octree leaf size.
+// 3 scattered plus one particle very far), threads, skin in percent, octree leaf size.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
 #include <cmath>
 #include <map>
 #include <random>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -21,8 +21,6 @@
 #include "craterkit/sph/space_filling_curve.hpp"
 
 namespace {
-
-using craterkit::sph::NeighbourAlgorithm;
 
 struct Cloud {
   std::vector<double> x, y, z, h;
@@ -80,11 +78,9 @@ const Cloud& cloud(std::int64_t n, int layout) {
 
 void BM_Build(benchmark::State& state) {
   const Cloud& c = cloud(state.range(0), int(state.range(1)));
-  const auto algorithm = state.range(2) == 0 ? NeighbourAlgorithm::cell_list : NeighbourAlgorithm::octree;
   const int threads_before = omp_get_max_threads();
-  omp_set_num_threads(int(state.range(3)));
-  craterkit::sph::NeighbourSearch search(
-      {algorithm, double(state.range(4)) / 100.0, std::size_t(state.range(5))});
+  omp_set_num_threads(int(state.range(2)));
+  craterkit::sph::NeighbourSearch search({double(state.range(3)) / 100.0, std::size_t(state.range(4))});
   craterkit::sph::NeighbourLists lists;
   const craterkit::sph::NeighbourInput input{c.x, c.y, c.z, c.h};
   search.build(input, {}, lists);  // warm-up: buffers reach their steady size
@@ -101,46 +97,23 @@ void BM_Build(benchmark::State& state) {
   state.counters["particles_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
 }
 
-void arguments(benchmark::internal::Benchmark* b) {
-  for (const std::int64_t n : {100000, 1000000}) {
-    for (const std::int64_t layout : {0, 1, 2}) {
-      for (const std::int64_t algorithm : {0, 1}) {
-        // The cell list sizes its cells by the largest h: with 10x h ejecta every cell holds thousands of
-        // particles (about 2e11 distance tests at 1e6); measured once at 1e5 by BM_CellListWideH below.
-        if (algorithm == 0 && layout == 2) continue;
-        for (const std::int64_t threads : {1, 2}) b->Args({n, layout, algorithm, threads, 0, 64});
-      }
-    }
-  }
-  b->ArgNames({"n", "layout", "octree", "threads", "skin_pct", "leaf"});
-  b->Unit(benchmark::kMillisecond)->UseRealTime();
-}
+const std::vector<std::string> names{"n", "layout", "threads", "skin_pct", "leaf"};
 
-BENCHMARK(BM_Build)->Apply(arguments);
-
-// One particle beyond the Morton resolution of the bulk (octree median-split fallback).
+// 1e5 and 1e6 particles, every layout, 1 and 2 threads.
 BENCHMARK(BM_Build)
-    ->Name("BM_OctreeFarParticle")
-    ->ArgsProduct({{100000, 1000000}, {3}, {1}, {1, 2}, {0}, {64}})
-    ->ArgNames({"n", "layout", "octree", "threads", "skin_pct", "leaf"})
+    ->ArgsProduct({{100000, 1000000}, {0, 1, 2, 3}, {1, 2}, {0}, {64}})
+    ->ArgNames(names)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
-BENCHMARK(BM_Build)
-    ->Name("BM_CellListWideH")
-    ->Args({100000, 2, 0, 2, 0, 64})
-    ->ArgNames({"n", "layout", "octree", "threads", "skin_pct", "leaf"})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime()
-    ->Iterations(1);
 // Octree leaf size (particles per leaf), then the Verlet skin, on 1 thread.
 BENCHMARK(BM_Build)
-    ->ArgsProduct({{100000, 1000000}, {0, 2}, {1}, {1}, {0}, {8, 16, 32, 64, 128}})
-    ->ArgNames({"n", "layout", "octree", "threads", "skin_pct", "leaf"})
+    ->ArgsProduct({{100000, 1000000}, {0, 2}, {1}, {0}, {8, 16, 32, 128}})
+    ->ArgNames(names)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(BM_Build)
-    ->ArgsProduct({{1000000}, {0}, {0, 1}, {1}, {10, 20}, {64}})
-    ->ArgNames({"n", "layout", "octree", "threads", "skin_pct", "leaf"})
+    ->ArgsProduct({{1000000}, {0}, {1}, {10, 20}, {64}})
+    ->ArgNames(names)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -3,7 +3,7 @@
 // second, every phase of a step included), neighbours per particle, bytes per particle, per-phase
 // timings and the thread efficiency speedup / threads.
 //
-//   sph_sedov_bench [n_per_side ...] [--steps S] [--threads T1,T2] [--skin S] [--algorithm octree|cell_list]
+//   sph_sedov_bench [n_per_side ...] [--steps S] [--threads T1,T2] [--skin S]
 //   e.g. sph_sedov_bench 46 100 --steps 20     (about 1e5 and 1e6 particles)
 #include <omp.h>
 
@@ -71,9 +71,6 @@ int main(int argc, char** argv) {
       steps = std::atoi(argv[++k]);
     } else if (arg == "--skin" && k + 1 < argc) {
       search.skin = std::atof(argv[++k]);
-    } else if (arg == "--algorithm" && k + 1 < argc) {
-      search.algorithm =
-          std::string(argv[++k]) == "cell_list" ? NeighbourAlgorithm::cell_list : NeighbourAlgorithm::octree;
     } else if (arg == "--threads" && k + 1 < argc) {
       thread_counts.clear();
       std::string list = argv[++k];
@@ -89,8 +86,7 @@ int main(int argc, char** argv) {
   if (sides.empty()) sides = {46, 100};
   if (steps < 1 || thread_counts.empty()) {
     std::fprintf(stderr,
-                 "usage: sph_sedov_bench [n_per_side ...] [--steps S] [--threads 1,2] [--skin S] "
-                 "[--algorithm octree|cell_list]\n");
+                 "usage: sph_sedov_bench [n_per_side ...] [--steps S] [--threads 1,2] [--skin S]\n");
     return 2;
   }
   std::printf(

@@ -285,8 +285,6 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
   {
     Section s = section("neighbours");
     auto& n = c.neighbours;
-    const std::string algo = s.text("algorithm", "octree", {"octree", "cell_list"});
-    n.search.algorithm = algo == "cell_list" ? NeighbourAlgorithm::cell_list : NeighbourAlgorithm::octree;
     n.search.skin = s.number("skin", n.search.skin, 0.0, 1.0);
     n.sort_interval = static_cast<std::uint64_t>(s.integer("sort_interval", 20, 0, int_max));
     s.finish();

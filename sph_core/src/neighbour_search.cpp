@@ -15,16 +15,10 @@ namespace craterkit::sph {
 
 namespace {
 
-constexpr std::uint64_t empty_key = std::numeric_limits<std::uint64_t>::max();
-
 // Candidates are tested in blocks of this many particles (the size of the stack array of test results;
 // the default octree leaf fits in one). Finer blocks of 8 with their own bounding boxes cut the distance
 // tests by a quarter but cost more in mispredicted box tests: measured slower (RESULTS_neighbours.md).
 constexpr std::uint32_t block_size = 64;
-
-std::uint64_t hash_key(std::uint64_t key) {
-  return key * 0x9E3779B97F4A7C15ULL;
-}
 
 // Gap between the intervals [a0, a1] and [b0, b1] (0 when they overlap), along a periodic axis of
 // length `edge` also between their images one edge apart.
@@ -58,7 +52,7 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       keyed_.capacity() * sizeof(keyed_[0]) +
       (xs_.capacity() + ys_.capacity() + zs_.capacity() + hs_.capacity()) * sizeof(double) +
       original_.capacity() * sizeof(std::uint32_t) + groups_.capacity() * sizeof(Group) +
-      nodes_.capacity() * sizeof(Node) + cell_table_.capacity() * sizeof(cell_table_[0]) +
+      nodes_.capacity() * sizeof(Node) +
       (rank_.capacity() + group_of_.capacity() + candidates_.capacity()) * sizeof(std::uint32_t) +
       candidate_offsets_.capacity() * sizeof(std::uint64_t);
   for (const auto& t : scratch_)
@@ -71,7 +65,6 @@ void NeighbourSearch::release_workspace() {
   release(keyed_);
   release(groups_);
   release(nodes_);
-  release(cell_table_);
   release(rank_);
   release(group_of_);
   release(candidate_offsets_);
@@ -128,40 +121,10 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
   }
   const CurveCube cube = bounding_cube(xs_, ys_, zs_);  // also rejects non-finite positions
 
-  if (options_.algorithm == NeighbourAlgorithm::octree) {
-    // The keys of curve_order(): particles sorted by the engine are found sorted and not re-sorted.
+  // The keys of curve_order(): particles sorted by the engine are found sorted and not re-sorted.
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      keyed_[i] = {morton_key(cube, xs_[i], ys_[i], zs_[i]), static_cast<std::uint32_t>(i)};
-    }
-  } else {
-    // Cells of edge >= reach, so every pair lies in the same or adjacent cells. Along periodic axes an
-    // integer number of cells fills the box (origin at box.lower) so that cell indices wrap.
-    for (int a = 0; a < 3; ++a) {
-      if (box.periodic[a]) {
-        const auto cells = std::max<std::int64_t>(1, std::int64_t(box.edge(a) / reach));
-        periodic_cells_[a] = cells;
-        cell_edge_[a] = box.edge(a) / double(cells);
-        cell_origin_[a] = box.lower[a];
-      } else {
-        periodic_cells_[a] = 0;
-        // Never more than 2^21 cells along an axis (key width): far-flung particles widen the cells.
-        cell_edge_[a] = std::max(reach, cube.edge / double((1u << morton_bits_per_axis) - 2));
-        if (!(cell_edge_[a] > 0)) cell_edge_[a] = 1.0;
-        cell_origin_[a] = cube.lower[a];
-      }
-    }
-    const std::array<double, 3> inverse{1.0 / cell_edge_[0], 1.0 / cell_edge_[1], 1.0 / cell_edge_[2]};
-    const auto cell = [&](int a, double v) {
-      auto c = std::int64_t((v - cell_origin_[a]) * inverse[a]);
-      if (periodic_cells_[a] > 0) c = std::clamp<std::int64_t>(c, 0, periodic_cells_[a] - 1);
-      return static_cast<std::uint32_t>(std::max<std::int64_t>(c, 0));
-    };
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
-      keyed_[i] = {morton_key(cell(0, xs_[i]), cell(1, ys_[i]), cell(2, zs_[i])),
-                   static_cast<std::uint32_t>(i)};
-    }
+  for (std::size_t i = 0; i < n; ++i) {
+    keyed_[i] = {morton_key(cube, xs_[i], ys_[i], zs_[i]), static_cast<std::uint32_t>(i)};
   }
   sort_keyed_indices(keyed_);
 
@@ -174,42 +137,6 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
     ys_[k] = wrap_position(box, 1, in.y[i]);
     zs_[k] = wrap_position(box, 2, in.z[i]);
     hs_[k] = in.smoothing_length[i];
-  }
-}
-
-void NeighbourSearch::make_cells() {
-  const std::size_t n = keyed_.size();
-  groups_.clear();
-  for (std::size_t b = 0; b < n;) {
-    std::size_t e = b + 1;
-    while (e < n && keyed_[e].first == keyed_[b].first) ++e;
-    groups_.push_back({{}, {}, 0.0, std::uint32_t(b), std::uint32_t(e)});
-    b = e;
-  }
-  const std::size_t cells = groups_.size();
-  std::size_t capacity = 16;
-  while (capacity < 2 * cells) capacity *= 2;
-  cell_table_.assign(capacity, {empty_key, 0});
-  const std::uint64_t mask = capacity - 1;
-  for (std::size_t g = 0; g < cells; ++g) {
-    const std::uint64_t key = keyed_[groups_[g].begin].first;
-    std::uint64_t slot = hash_key(key) >> 20 & mask;
-    while (cell_table_[slot].first != empty_key) slot = (slot + 1) & mask;
-    cell_table_[slot] = {key, std::uint32_t(g)};
-  }
-#pragma omp parallel for schedule(static)
-  for (std::size_t g = 0; g < cells; ++g) {
-    Group& group = groups_[g];
-    group.lower = {xs_[group.begin], ys_[group.begin], zs_[group.begin]};
-    group.upper = group.lower;
-    group.h_max = 0;
-    for (std::uint32_t k = group.begin; k < group.end; ++k) {
-      group.lower = {std::min(group.lower[0], xs_[k]), std::min(group.lower[1], ys_[k]),
-                     std::min(group.lower[2], zs_[k])};
-      group.upper = {std::max(group.upper[0], xs_[k]), std::max(group.upper[1], ys_[k]),
-                     std::max(group.upper[2], zs_[k])};
-      group.h_max = std::max(group.h_max, hs_[k]);
-    }
   }
 }
 
@@ -352,62 +279,6 @@ void NeighbourSearch::candidates_octree(std::size_t g, const Box& box,
 }
 
 template <bool Periodic>
-void NeighbourSearch::candidates_cells(std::size_t g, const Box& box, std::vector<std::uint32_t>& out) const {
-  const Group& group = groups_[g];
-  const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
-  const double grow = 1.0 + options_.skin;
-  // Cell coordinates of this group from its key (de-interleave).
-  const std::uint64_t key = keyed_[group.begin].first;
-  std::array<std::int64_t, 3> c{};
-  for (int bit = 0; bit < morton_bits_per_axis; ++bit) {
-    c[0] |= std::int64_t((key >> (3 * bit + 2)) & 1) << bit;
-    c[1] |= std::int64_t((key >> (3 * bit + 1)) & 1) << bit;
-    c[2] |= std::int64_t((key >> (3 * bit)) & 1) << bit;
-  }
-  // Neighbouring cell coordinates along each axis (wrapped and deduplicated on periodic axes).
-  std::array<std::array<std::int64_t, 3>, 3> coords{};
-  std::array<int, 3> counts{};
-  for (int a = 0; a < 3; ++a) {
-    for (int d = -1; d <= 1; ++d) {
-      std::int64_t v = c[a] + d;
-      if (periodic_cells_[a] > 0) {
-        v = (v + periodic_cells_[a]) % periodic_cells_[a];
-      } else if (v < 0 || v >= (std::int64_t{1} << morton_bits_per_axis)) {
-        continue;
-      }
-      if (std::find(coords[a].begin(), coords[a].begin() + counts[a], v) == coords[a].begin() + counts[a]) {
-        coords[a][counts[a]++] = v;
-      }
-    }
-  }
-  const std::uint64_t mask = cell_table_.size() - 1;
-  for (int i = 0; i < counts[0]; ++i) {
-    for (int j = 0; j < counts[1]; ++j) {
-      for (int k = 0; k < counts[2]; ++k) {
-        const std::uint64_t want =
-            morton_key(std::uint32_t(coords[0][i]), std::uint32_t(coords[1][j]), std::uint32_t(coords[2][k]));
-        std::uint64_t slot = hash_key(want) >> 20 & mask;
-        while (cell_table_[slot].first != empty_key && cell_table_[slot].first != want)
-          slot = (slot + 1) & mask;
-        if (cell_table_[slot].first == empty_key) continue;
-        const std::uint32_t other = cell_table_[slot].second;
-        const Group& o = groups_[other];
-        double d2 = 0;
-        for (int a = 0; a < 3; ++a) {
-          const double gap = interval_gap<Periodic>(group.lower[a], group.upper[a], o.lower[a], o.upper[a],
-                                                    box.periodic[a], edge[a]);
-          d2 += gap * gap;
-        }
-        const double reach = grow * (group.h_max + o.h_max);
-        if (d2 < reach * reach) out.push_back(other);
-      }
-    }
-  }
-  // Groups are numbered along the curve: sorted candidates give neighbour lists in curve order.
-  std::sort(out.begin(), out.end());
-}
-
-template <bool Periodic>
 void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
   const std::size_t n = xs_.size();
   const double grow = 1.0 + options_.skin;
@@ -416,7 +287,6 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
   const std::array<double, 3> half{box.periodic[0] ? 0.5 * edge[0] : inf,
                                    box.periodic[1] ? 0.5 * edge[1] : inf,
                                    box.periodic[2] ? 0.5 * edge[2] : inf};
-  const bool octree = options_.algorithm == NeighbourAlgorithm::octree;
   rank_.resize(n);
   group_of_.resize(n);
   const double* xs = xs_.data();
@@ -439,11 +309,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
   const std::size_t group_count = groups_.size();
   const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
     out.clear();
-    if (octree) {
-      candidates_octree<Periodic>(g, box, out);
-    } else {
-      candidates_cells<Periodic>(g, box, out);
-    }
+    candidates_octree<Periodic>(g, box, out);
   };
   candidate_offsets_.resize(group_count + 1);
   candidate_offsets_[0] = 0;
@@ -616,11 +482,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
 void NeighbourSearch::build(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {
   built_ = false;
   sort_particles(input, box);
-  if (options_.algorithm == NeighbourAlgorithm::octree) {
-    make_octree();
-  } else {
-    make_cells();
-  }
+  make_octree();
   if (box.any_periodic()) {
     collect_pairs<true>(box, lists);
   } else {

@@ -71,15 +71,15 @@ void expect_equal_to_brute_force(const NeighbourLists& lists,
 }
 
 struct Case {
-  NeighbourAlgorithm algorithm;
   double skin;
+  std::size_t leaf_size;
 };
 
 class NeighbourSearchTest : public ::testing::TestWithParam<Case> {};
 
 TEST_P(NeighbourSearchTest, EqualsBruteForceVariableH) {
   const Cloud c = random_cloud(3000, 0.03, 0.1, 0.0, 1);
-  NeighbourSearch search({GetParam().algorithm, GetParam().skin, 8});
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
   const NeighbourLists lists = search.build(c.input(), Box{});
   expect_equal_to_brute_force(lists, brute_force(c, Box{}, GetParam().skin));
   EXPECT_GT(lists.mean_neighbours(), 10.0);  // the test must exercise real neighbour sets
@@ -91,7 +91,7 @@ TEST_P(NeighbourSearchTest, EqualsBruteForceWithScatteredEjectaAndWideH) {
   c.h[7] = 3.0;    // one particle with a huge h reaching many others
   c.x[11] = 1e9;   // one particle beyond the 2^21 Morton resolution of the bulk: the bulk shares one key
   c.y[12] = -1e7;  // and the octree must split it at medians (split_at_median)
-  NeighbourSearch search({GetParam().algorithm, GetParam().skin, 16});
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
   expect_equal_to_brute_force(search.build(c.input(), Box{}), brute_force(c, Box{}, GetParam().skin));
 }
 
@@ -101,7 +101,7 @@ TEST_P(NeighbourSearchTest, EqualsBruteForcePeriodic) {
        {std::array<bool, 3>{true, false, false}, std::array<bool, 3>{true, true, true},
         std::array<bool, 3>{false, true, true}}) {
     const Box box{{0, 0, 0}, {1, 1, 1}, periodic};
-    NeighbourSearch search({GetParam().algorithm, GetParam().skin, 8});
+    NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
     SCOPED_TRACE(::testing::Message() << periodic[0] << periodic[1] << periodic[2]);
     expect_equal_to_brute_force(search.build(c.input(), box), brute_force(c, box, GetParam().skin));
   }
@@ -113,13 +113,13 @@ TEST_P(NeighbourSearchTest, PeriodicBoxOnlyFewCellsWideAndPositionsOutsideBox) {
   Cloud c = random_cloud(800, 0.1, 0.12, 0.0, 4);
   for (std::size_t i = 0; i < c.x.size(); i += 3) c.x[i] += 1.0;
   const Box box{{0, 0, 0}, {1, 1, 1}, {true, true, true}};
-  NeighbourSearch search({GetParam().algorithm, 0.0, 4});
+  NeighbourSearch search({0.0, GetParam().leaf_size});
   expect_equal_to_brute_force(search.build(c.input(), box), brute_force(c, box, 0.0));
 }
 
 TEST_P(NeighbourSearchTest, ListsAreSymmetric) {
   const Cloud c = random_cloud(5000, 0.005, 0.05, 0.01, 5);
-  NeighbourSearch search({GetParam().algorithm, GetParam().skin, 16});
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
   const NeighbourLists lists = search.build(c.input(), Box{});
   for (std::size_t i = 0; i < lists.particle_count(); ++i) {
     for (const std::uint32_t j : lists.of(i)) {
@@ -131,7 +131,7 @@ TEST_P(NeighbourSearchTest, ListsAreSymmetric) {
 
 TEST_P(NeighbourSearchTest, IndependentOfThreadCountAndReusesBuffers) {
   const Cloud c = random_cloud(20000, 0.01, 0.03, 0.01, 6);
-  NeighbourSearch search({GetParam().algorithm, GetParam().skin, 16});
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   NeighbourLists one;
@@ -155,7 +155,7 @@ TEST_P(NeighbourSearchTest, ExactWhenTheSampledCountsMislead) {
   // particles isolated, so the regions are far too small and the overflow path must take over.
   Cloud c = random_cloud(4000, 0.04, 0.06, 0.0, 9);
   for (std::size_t i = 0; i < c.x.size(); i += 16) c.x[i] += 1000.0 + double(i);
-  NeighbourSearch search({GetParam().algorithm, GetParam().skin, 16});
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
   for (const int threads : {1, 2, 3}) {
     omp_set_num_threads(threads);
     expect_equal_to_brute_force(search.build(c.input(), Box{}), brute_force(c, Box{}, GetParam().skin));
@@ -163,11 +163,8 @@ TEST_P(NeighbourSearchTest, ExactWhenTheSampledCountsMislead) {
   omp_set_num_threads(2);
 }
 
-INSTANTIATE_TEST_SUITE_P(Algorithms, NeighbourSearchTest,
-                         ::testing::Values(Case{NeighbourAlgorithm::octree, 0.0},
-                                           Case{NeighbourAlgorithm::octree, 0.15},
-                                           Case{NeighbourAlgorithm::cell_list, 0.0},
-                                           Case{NeighbourAlgorithm::cell_list, 0.15}));
+INSTANTIATE_TEST_SUITE_P(SkinAndLeafSize, NeighbourSearchTest,
+                         ::testing::Values(Case{0.0, 4}, Case{0.15, 16}, Case{0.0, 64}, Case{0.15, 64}));
 
 TEST(NeighbourSearch, EdgeCases) {
   NeighbourSearch search;
@@ -200,8 +197,8 @@ TEST(NeighbourSearch, RejectsBadInput) {
   const Cloud big_h{{0.1, 0.6}, {0, 0}, {0, 0}, {0.3, 0.3}};
   EXPECT_THROW((void)search.build(big_h.input(), Box{{0, 0, 0}, {1, 1, 1}, {true, false, false}}),
                std::invalid_argument);
-  EXPECT_THROW(NeighbourSearch({NeighbourAlgorithm::octree, -0.1, 16}), std::invalid_argument);
-  EXPECT_THROW(NeighbourSearch({NeighbourAlgorithm::octree, 0.1, 0}), std::invalid_argument);
+  EXPECT_THROW(NeighbourSearch({-0.1, 16}), std::invalid_argument);
+  EXPECT_THROW(NeighbourSearch({0.1, 0}), std::invalid_argument);
 }
 
 TEST(NeighbourSearch, RebuildCriterionIsSufficient) {
@@ -209,7 +206,7 @@ TEST(NeighbourSearch, RebuildCriterionIsSufficient) {
   // (skinned) lists must still contain every true pair of the new configuration.
   const double skin = 0.2;
   Cloud c = random_cloud(3000, 0.02, 0.05, 0.0, 7);
-  NeighbourSearch search({NeighbourAlgorithm::octree, skin, 16});
+  NeighbourSearch search({skin, 16});
   const NeighbourLists lists = search.build(c.input(), Box{});
   EXPECT_FALSE(search.needs_rebuild(c.input()));
   std::mt19937_64 rng(8);

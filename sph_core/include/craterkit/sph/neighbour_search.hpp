@@ -16,12 +16,10 @@
 // Periodic axes use the minimum-image convention; the box edge along a periodic axis must exceed
 // 2 (1 + s)(h_i + h_j) for every pair, so that no pair interacts through two images.
 //
-// Two algorithms, both OpenMP-parallel and allocation-free in steady state (buffers are kept across
-// rebuilds): a Morton octree with per-node bounding boxes and maximum h (the default: robust for widely
-// varying h and for particles thrown far away) and a sparse cell list (hashed cells of edge 2 h_max).
-// The octree was measured 15-20 % faster and far faster with a wide spread of h
-// (bench/RESULTS_neighbours.md); the cell list is kept only until the configuration key that selects it
-// is removed.
+// Algorithm: a Morton octree with per-node bounding boxes and maximum h (robust for widely varying h and
+// for particles thrown far away), OpenMP-parallel and allocation-free in steady state (buffers are kept
+// across rebuilds). A sparse cell list was measured 15-20 % slower, and far slower with a wide spread of
+// h, and removed (bench/RESULTS_neighbours.md).
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -93,10 +91,7 @@ struct NeighbourLists {
   }
 };
 
-enum class NeighbourAlgorithm { cell_list, octree };
-
 struct NeighbourSearchOptions {
-  NeighbourAlgorithm algorithm = NeighbourAlgorithm::octree;
   double skin = 0.0;           // relative Verlet skin s >= 0 (lists hold r < (1 + s)(h_i + h_j))
   std::size_t leaf_size = 64;  // octree: maximum particles per leaf (>= 1); 64 measured fastest
 };
@@ -109,8 +104,8 @@ struct NeighbourInput {
   return {p.x, p.y, p.z, p.smoothing_length};
 }
 
-// Holds the work buffers (sorted copies of positions and h, tree/cells, per-thread output) between
-// rebuilds, so a rebuild allocates nothing once the particle count and neighbour counts are stable.
+// Holds the work buffers (sorted copies of positions and h, octree, candidate lists, per-thread overflow)
+// between rebuilds, so a rebuild allocates nothing once the particle count and neighbour counts are stable.
 class NeighbourSearch {
  public:
   explicit NeighbourSearch(NeighbourSearchOptions options = {});
@@ -141,7 +136,7 @@ class NeighbourSearch {
   [[nodiscard]] std::size_t workspace_bytes() const;
 
  private:
-  struct Group {                         // a cell or an octree leaf: a contiguous range of sorted particles
+  struct Group {                         // an octree leaf: a contiguous range of sorted particles
     std::array<double, 3> lower, upper;  // tight bounding box of the particles
     double h_max;
     std::uint32_t begin, end;
@@ -154,13 +149,10 @@ class NeighbourSearch {
   };
 
   void sort_particles(const NeighbourInput& input, const Box& box);
-  void make_cells();
   void make_octree();
   void split_at_median(std::uint32_t begin, std::uint32_t end);
   template <bool Periodic>
   void collect_pairs(const Box& box, NeighbourLists& lists);
-  template <bool Periodic>
-  void candidates_cells(std::size_t g, const Box& box, std::vector<std::uint32_t>& out) const;
   template <bool Periodic>
   void candidates_octree(std::size_t g, const Box& box, std::vector<std::uint32_t>& out) const;
 
@@ -172,13 +164,8 @@ class NeighbourSearch {
   std::vector<std::uint32_t> original_;                         // sorted index -> original index
   std::vector<Group> groups_;
   std::vector<Node> nodes_;
-  // Cell list: hashed cell keys -> group index; cell geometry.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> cell_table_;
-  std::array<double, 3> cell_origin_{};
-  std::array<double, 3> cell_edge_{};
-  std::array<std::int64_t, 3> periodic_cells_{};  // cells along each periodic axis (0 on open axes)
-  std::vector<std::uint32_t> rank_;               // original index -> sorted index
-  std::vector<std::uint32_t> group_of_;           // sorted index -> group
+  std::vector<std::uint32_t> rank_;      // original index -> sorted index
+  std::vector<std::uint32_t> group_of_;  // sorted index -> group
   // Candidate groups of each group (CSR): groups whose box may hold a neighbour of one of its particles.
   std::vector<std::uint64_t> candidate_offsets_;
   std::vector<std::uint32_t> candidates_;
