@@ -240,6 +240,15 @@ void run_age(const AgeOptions& o) {
       {"equilibrium_fraction",
        fit.cap.enabled ? nlohmann::json(fit.cap.fraction_of_geometric) : nlohmann::json(nullptr)},
       {"prior", fmt::format("uniform in age on [0, {:g}] yr", fit.max_age)}};
+  nlohmann::json warnings = nlohmann::json::array();
+  if (setup.population.approximate) {
+    warnings.push_back(fmt::format(
+        "population {} is an approximation, not published values (see its notes): absolute ages are "
+        "indicative only; the ratios between cohesions are not affected",
+        setup.population.name));
+  }
+  for (const auto& w : warnings) std::cerr << "craterkit: warning: " << w.get<std::string>() << "\n";
+  out["warnings"] = warnings;
   out["observed_cumulative_per_km2"] = observed;
   out["ages"] = ages;
 

@@ -195,6 +195,7 @@ const std::vector<std::string>& allowed_keys() {
   static const std::vector<std::string> keys = {"name",
                                                 "citation",
                                                 "notes",
+                                                "approximate",
                                                 "kind",
                                                 "slope",
                                                 "slopes",
@@ -328,6 +329,10 @@ ImpactorPopulation load_population_file(const std::filesystem::path& path) {
   p.name = t["name"].value_or(path.stem().string());
   p.citation = t["citation"].value_or(std::string{});
   p.notes = t["notes"].value_or(std::string{});
+  if (const auto approximate = t["approximate"]; approximate) {
+    if (!approximate.is_boolean()) throw InputError(file + ": key 'approximate' must be true or false");
+    p.approximate = approximate.value_or(false);
+  }
   const std::string kind = t["kind"].value_or(std::string{});
   if (kind == "power_law") {
     p.shape =

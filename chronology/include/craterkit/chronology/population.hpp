@@ -42,6 +42,9 @@ struct ImpactorPopulation {
   std::string name;
   std::string citation;
   std::string notes;  // what was digitised or approximated
+  // True when the shape is an approximation rather than published values: absolute rates and ages
+  // computed with it are indicative only (ratios between cohesions depend only on the local slope).
+  bool approximate = false;
   std::variant<PowerLaw, BrokenPowerLaw, CumulativeTable> shape;
 };
 
