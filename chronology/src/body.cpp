@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "craterkit/common/data_path.hpp"
+#include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit::chronology {
@@ -58,44 +59,13 @@ const CollisionEnvironment& environment(const Body& body, CollisionRegion region
   return *env;
 }
 
-std::vector<std::string> body_names() {
-  std::vector<std::string> names;
-  const auto dir = data_file("bodies");
-  if (std::filesystem::is_directory(dir)) {
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-      if (entry.path().extension() == ".toml") names.push_back(entry.path().stem().string());
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> body_names() { return data_set_names("bodies"); }
 
-Body load_body(const std::string& name_or_path) {
-  const std::filesystem::path as_path(name_or_path);
-  if (as_path.extension() == ".toml" || name_or_path.find('/') != std::string::npos)
-    return load_body_file(as_path);
-  const auto path = data_file("bodies") / (name_or_path + ".toml");
-  if (!std::filesystem::exists(path)) {
-    std::string names;
-    for (const auto& n : body_names()) names += (names.empty() ? "" : ", ") + n;
-    throw InputError("--body '" + name_or_path + "' is not known; available: " + names +
-                     " (or give a path to a body .toml file)");
-  }
-  return load_body_file(path);
-}
+Body load_body(const std::string& name_or_path) { return load_body_file(resolve_data_set(name_or_path, "bodies", "--body")); }
 
 Body load_body_file(const std::filesystem::path& path) {
   const std::string file = path.string();
-  toml::table t;
-  try {
-    t = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream os;
-    os << file << ":" << e.source().begin.line << ": " << e.description();
-    throw InputError(os.str());
-  } catch (const std::exception& e) {
-    throw InputError(file + ": " + e.what());
-  }
+  const toml::table t = parse_toml_file(path);
   check_keys(t,
              {"name", "mean_radius_m", "bulk_density_kg_m3", "surface_gravity_m_s2", "surface_area_m2",
               "main_belt", "near_earth", "citations"},

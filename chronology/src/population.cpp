@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "craterkit/common/data_path.hpp"
+#include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "text_table.hpp"
 
@@ -280,45 +281,15 @@ CumulativeTable read_cumulative_csv(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::vector<std::string> population_names() {
-  std::vector<std::string> names;
-  const auto dir = data_file("populations");
-  if (std::filesystem::is_directory(dir)) {
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-      if (entry.path().extension() == ".toml") names.push_back(entry.path().stem().string());
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> population_names() { return data_set_names("populations"); }
 
 ImpactorPopulation load_population(const std::string& name_or_path) {
-  const std::filesystem::path as_path(name_or_path);
-  if (as_path.extension() == ".toml" || name_or_path.find('/') != std::string::npos) {
-    return load_population_file(as_path);
-  }
-  const auto path = data_file("populations") / (name_or_path + ".toml");
-  if (!std::filesystem::exists(path)) {
-    std::string names;
-    for (const auto& n : population_names()) names += (names.empty() ? "" : ", ") + n;
-    throw InputError("population '" + name_or_path + "' is not known; available: " + names +
-                     " (or give a path to a population .toml file)");
-  }
-  return load_population_file(path);
+  return load_population_file(resolve_data_set(name_or_path, "populations", "population"));
 }
 
 ImpactorPopulation load_population_file(const std::filesystem::path& path) {
   const std::string file = path.string();
-  toml::table t;
-  try {
-    t = toml::parse_file(file);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream os;
-    os << file << ":" << e.source().begin.line << ": " << e.description();
-    throw InputError(os.str());
-  } catch (const std::exception& e) {
-    throw InputError(file + ": " + e.what());
-  }
+  const toml::table t = parse_toml_file(path);
   for (const auto& [key, node] : t) {
     const std::string k(key.str());
     if (std::find(allowed_keys().begin(), allowed_keys().end(), k) == allowed_keys().end()) {

@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "craterkit/common/data_path.hpp"
+#include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/constant_sets.hpp"
 
@@ -56,17 +57,7 @@ void reject_unknown_keys(const toml::table& table, const std::set<std::string>& 
 
 }  // namespace
 
-std::vector<std::string> constant_set_names() {
-  std::vector<std::string> names;
-  const auto dir = scaling_directory();
-  if (!std::filesystem::is_directory(dir)) return names;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".toml")
-      names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> constant_set_names() { return data_set_names("scaling"); }
 
 ConstantSet load_constant_set(const std::string& name) {
   const auto names = constant_set_names();
@@ -83,12 +74,7 @@ ConstantSet load_constant_set(const std::string& name) {
 
 ConstantSet load_constant_set_file(const std::filesystem::path& path) {
   const std::string where = path.string();
-  toml::table root;
-  try {
-    root = toml::parse_file(path.string());
-  } catch (const toml::parse_error& error) {
-    throw InputError(where + ": not valid TOML: " + std::string(error.description()));
-  }
+  const toml::table root = parse_toml_file(path);
   reject_unknown_keys(root,
                       {"name", "description", "citation", "form", "conventions", "note", "not_given",
                        "constants", "target", "published"},

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "craterkit/common/data_path.hpp"
+#include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit::sph {
@@ -260,58 +261,13 @@ Material parse_material(const toml::table& root, const std::string& name, const 
   return material;
 }
 
-std::filesystem::path materials_directory() {
-  return data_file("materials");
-}
-
-bool looks_like_path(const std::string& s) {
-  return s.find('/') != std::string::npos || (s.size() > 5 && s.ends_with(".toml"));
-}
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
 }  // namespace
 
-std::vector<std::string> material_names() {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(materials_directory(), ec)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".toml") {
-      names.push_back(entry.path().stem().string());
-    }
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> material_names() { return data_set_names("materials"); }
 
 Material load_material(const std::string& name_or_path) {
-  std::filesystem::path file;
-  if (looks_like_path(name_or_path)) {
-    file = name_or_path;
-    if (!std::filesystem::is_regular_file(file)) {
-      throw InputError("material file '" + name_or_path + "' does not exist");
-    }
-  } else {
-    file = materials_directory() / (name_or_path + ".toml");
-    if (name_or_path.empty() || !std::filesystem::is_regular_file(file)) {
-      throw InputError("unknown material '" + name_or_path + "' (shipped materials: " +
-                       join(material_names()) + "; or give the path of a material .toml file)");
-    }
-  }
-  toml::table root;
-  try {
-    root = toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    std::ostringstream text;
-    text << file.string() << ":" << e.source().begin.line << ":" << e.source().begin.column
-         << ": invalid TOML: " << e.description();
-    throw InputError(text.str());
-  }
-  return parse_material(root, file.stem().string(), file.string());
+  const auto file = resolve_data_set(name_or_path, "materials", "material");
+  return parse_material(parse_toml_file(file), file.stem().string(), file.string());
 }
 
 }  // namespace craterkit::sph

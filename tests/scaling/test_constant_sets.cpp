@@ -138,7 +138,7 @@ TEST(ConstantSets, MalformedFilesNameTheKey) {
                 .find("strength"),
             std::string::npos);
   EXPECT_NE(load_error("name = \"x\"\n").find("description"), std::string::npos);
-  EXPECT_NE(load_error("name = \n").find("not valid TOML"), std::string::npos);
+  EXPECT_NE(load_error("name = \n").find("invalid TOML"), std::string::npos);
   EXPECT_EQ(load_error(kHeader + "form = \"hh2011\"\n[constants]\nH1 = 0.6\nH2 = 0.2\nmu = 0.4\nnu = 0.4\n"),
             "");
 }
