@@ -111,11 +111,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     const double xi = x[i], yi = y[i], zi = z[i];
     const double vxi = vx[i], vyi = vy[i], vzi = vz[i];
     const double hi = h[i], ci = c[i], rhoi = rho[i], inv_rhoi = inv_rho[i];
-    const double pressure_i = pressure[i];
+    const double pr2i = pressure[i] * (inv_rhoi * inv_rhoi);  // P_i/rho_i^2, rounded as for j
     const double alphai = use_switch ? alpha[i] : av.alpha;
 
     double ax = 0.0, ay = 0.0, az = 0.0;
     double vv_grad = 0.0;  // sum_j (m_j/rho_j) v_ij . grad_i W_ij  (= -div v_i)
+    double mv_grad = 0.0;  // sum_j m_j v_ij . grad_i W_ij
     double viscous = 0.0;  // sum_j m_j Pi_ij v_ij . grad_i W_ij
     double max_mu = 0.0;   // max_j |mu_ij| over approaching pairs
     std::uint64_t count = 0;
@@ -160,11 +161,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       }
 
       const double inv_rho2j = inv_rho[j] * inv_rho[j];
-      const double f = (pressure_i + pressure[j]) * (inv_rhoi * inv_rho[j]) + pi_ij;  // symmetric in i, j
+      const double f = (pr2i + pressure[j] * inv_rho2j) + pi_ij;  // symmetric in i, j
       ax -= mj * f * gx;
       ay -= mj * f * gy;
       az -= mj * f * gz;
       vv_grad += volume[j] * v_dot_g;
+      mv_grad += mj * v_dot_g;
       viscous += mj * pi_ij * v_dot_g;
 
       if constexpr (solid) {
@@ -196,7 +198,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     ay_out[i] = ay + gy_body;
     az_out[i] = az + gz_body;
     drho_out[i] = rhoi * vv_grad;
-    double du = pressure_i * inv_rhoi * vv_grad + 0.5 * viscous;
+    double du = pr2i * mv_grad + 0.5 * viscous;
 
     if constexpr (solid) {
       // Work of the deviatoric stress with the uncorrected gradient G (energy-consistent with the

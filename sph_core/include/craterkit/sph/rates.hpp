@@ -21,8 +21,14 @@
 // neighbours grows as 1/rho_i and drives its density to zero in finite time (seen in the hot centre
 // of the Sedov blast, where the time step then collapsed). The energy equation keeps the m_j form,
 // which matches the momentum equation pair by pair: total energy is conserved to the integration
-// error. (The volume-weighted momentum form (sigma_i + sigma_j)/(rho_i rho_j) was tried as well and
-// gave a worse Sedov shock radius, docs/validation.md.)
+// error.
+// The mix is not adiabatic where neighbour densities differ (du/dt != (P/rho^2) drho/dt), and the
+// P/rho^2 force pushes the two sides of a density jump apart (Sod lattices, contact at rest: -117 and
+// +629 at t = 0). The fully volume-weighted scheme, (P_i + P_j)/(rho_i rho_j) in the momentum
+// equation and (P_i/rho_i) sum_j (m_j/rho_j) v_ij . grad W in the energy equation (adiabatic, and
+// energy-conserving pair by pair), fixes both (contact at rest: L1 0.005 against 0.030) but moves the
+// Sedov shock radius from -1.7 % to -3.2 % at 50^3 (over the 3 % bound), so it is not used. Neither
+// form was the cause of the wrong Sod star state: that was the smoothing length (docs/validation.md).
 //
 // Momentum is conserved pairwise: the force term for (i, j) is built from expressions symmetric in
 // i and j (hbar, cbar, rhobar, P_i/rho_i^2 + P_j/rho_j^2) times grad_i W_ij = -grad_j W_ji, so the
