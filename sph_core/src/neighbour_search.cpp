@@ -418,7 +418,11 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
         scratch_[u].region_start = start;
         start += scratch_[u].region_size;
       }
-      if (lists.neighbours.size() < start) lists.neighbours.resize(start);
+      if (lists.neighbours.size() < start) {
+        // reserve first: resize alone would let std::vector double its capacity (2x the lists' memory)
+        if (lists.neighbours.capacity() < start) lists.neighbours.reserve(start);
+        lists.neighbours.resize(start);
+      }
     }
     // implicit barrier: regions are laid out
     std::uint32_t* region = lists.neighbours.data() + t.region_start;

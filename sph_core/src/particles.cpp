@@ -17,6 +17,10 @@ void Particles::reserve(std::size_t n) {
   for_each_field([n](std::string_view, auto& field) { field.reserve(n); });
 }
 
+void Particles::shrink_to_fit() {
+  for_each_field([](std::string_view, auto& field) { field.shrink_to_fit(); });
+}
+
 void Particles::permute(std::span<const std::uint32_t> order) {
   assert(order.size() == size());
   for_each_field([&order](std::string_view, auto& field) {

@@ -65,14 +65,19 @@ ProblemSetup build_problem(const SimulationConfig& config) {
   return make_plate_impact(std::get<PlateImpactSetup>(config.setup), eta, alpha);
 }
 
-Simulation::Simulation(SimulationConfig config, ProblemSetup problem)
-    : config_(std::move(config)), problem_(std::move(problem)), search_(config_.neighbours.search) {
+void Simulation::configure() {
   for (const auto& m : problem_.materials) equations_of_state_.push_back(m.eos);
   rate_options_.kernel = config_.kernel;
   rate_options_.viscosity = config_.viscosity;
   rate_options_.gravity = config_.run.gravity;
   rate_options_.period = periods(problem_.box);
   rate_options_.solid = false;  // deviatoric stress arrives with the strength models (issue 5)
+  problem_.particles.shrink_to_fit();
+}
+
+Simulation::Simulation(SimulationConfig config, ProblemSetup problem)
+    : config_(std::move(config)), problem_(std::move(problem)), search_(config_.neighbours.search) {
+  configure();
   update_smoothing_length(problem_.particles, config_.smoothing);
   evaluate_rates();
   limits_ = sph::time_step_limits(problem_.particles, rate_summary_, config_.time_step);
@@ -83,12 +88,8 @@ Simulation::Simulation(SimulationConfig config, ProblemSetup problem)
 Simulation::Simulation(SimulationConfig config, ProblemSetup problem, Particles particles,
                        const RunAttributes& attributes)
     : config_(std::move(config)), problem_(std::move(problem)), search_(config_.neighbours.search) {
-  for (const auto& m : problem_.materials) equations_of_state_.push_back(m.eos);
-  rate_options_.kernel = config_.kernel;
-  rate_options_.viscosity = config_.viscosity;
-  rate_options_.gravity = config_.run.gravity;
-  rate_options_.period = periods(problem_.box);
   problem_.particles = std::move(particles);
+  configure();
   for (const auto id : problem_.particles.material) {
     if (id >= problem_.materials.size()) {
       throw InputError("checkpoint: material id " + std::to_string(id) + " not defined by the configuration");

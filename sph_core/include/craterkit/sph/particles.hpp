@@ -58,6 +58,7 @@ struct Particles {
   [[nodiscard]] std::size_t size() const { return x.size(); }
   void resize(std::size_t n);  // new entries: zeros, distention 1, flags active
   void reserve(std::size_t n);
+  void shrink_to_fit();  // releases the growth slack of every field (set-ups build by push_back)
 
   // Reorders every registered field: new index k takes the particle at old index order[k].
   void permute(std::span<const std::uint32_t> order);

@@ -71,6 +71,7 @@ class Simulation {
   void force_neighbour_rebuild() { force_rebuild_ = true; }
 
  private:
+  void configure();  // shared by both constructors: laws, rate options, particle storage
   void evaluate_rates();
   void update_equation_of_state();
 
