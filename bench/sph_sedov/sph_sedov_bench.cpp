@@ -85,8 +85,7 @@ int main(int argc, char** argv) {
   }
   if (sides.empty()) sides = {46, 100};
   if (steps < 1 || thread_counts.empty()) {
-    std::fprintf(stderr,
-                 "usage: sph_sedov_bench [n_per_side ...] [--steps S] [--threads 1,2] [--skin S]\n");
+    std::fprintf(stderr, "usage: sph_sedov_bench [n_per_side ...] [--steps S] [--threads 1,2] [--skin S]\n");
     return 2;
   }
   std::printf(

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <sstream>
 
-#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/data_catalogue.hpp"
+#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit::chronology {
@@ -59,9 +59,13 @@ const CollisionEnvironment& environment(const Body& body, CollisionRegion region
   return *env;
 }
 
-std::vector<std::string> body_names() { return data_set_names("bodies"); }
+std::vector<std::string> body_names() {
+  return data_set_names("bodies");
+}
 
-Body load_body(const std::string& name_or_path) { return load_body_file(resolve_data_set(name_or_path, "bodies", "--body")); }
+Body load_body(const std::string& name_or_path) {
+  return load_body_file(resolve_data_set(name_or_path, "bodies", "--body"));
+}
 
 Body load_body_file(const std::filesystem::path& path) {
   const std::string file = path.string();

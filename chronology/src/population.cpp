@@ -6,8 +6,8 @@
 #include <limits>
 #include <sstream>
 
-#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/data_catalogue.hpp"
+#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "text_table.hpp"
 
@@ -281,7 +281,9 @@ CumulativeTable read_cumulative_csv(const std::filesystem::path& path) {
 
 }  // namespace
 
-std::vector<std::string> population_names() { return data_set_names("populations"); }
+std::vector<std::string> population_names() {
+  return data_set_names("populations");
+}
 
 ImpactorPopulation load_population(const std::string& name_or_path) {
   return load_population_file(resolve_data_set(name_or_path, "populations", "population"));

@@ -9,8 +9,8 @@
 
 #include <toml++/toml.h>
 
-#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/data_catalogue.hpp"
+#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/constant_sets.hpp"
 
@@ -57,7 +57,9 @@ void reject_unknown_keys(const toml::table& table, const std::set<std::string>& 
 
 }  // namespace
 
-std::vector<std::string> constant_set_names() { return data_set_names("scaling"); }
+std::vector<std::string> constant_set_names() {
+  return data_set_names("scaling");
+}
 
 ConstantSet load_constant_set(const std::string& name) {
   const auto names = constant_set_names();

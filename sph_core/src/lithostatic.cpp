@@ -43,16 +43,17 @@ double cold_matrix_density(const Material& material, double target) {
   }
   // Brent's method (GSL) on the bracket [lo, hi] with f(lo) <= 0 < f(hi).
   if (f_lo == 0.0) return lo;
-  gsl_function function{[](double rho_m, void* params) { return (*static_cast<decltype(excess)*>(params))(rho_m); },
-                        const_cast<void*>(static_cast<const void*>(&excess))};
+  gsl_function function{
+      [](double rho_m, void* params) { return (*static_cast<decltype(excess)*>(params))(rho_m); },
+      const_cast<void*>(static_cast<const void*>(&excess))};
   gsl_root_fsolver* solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
   gsl_root_fsolver_set(solver, &function, lo, hi);
   double root = 0.5 * (lo + hi);
   for (int iteration = 0; iteration < 300; ++iteration) {
     gsl_root_fsolver_iterate(solver);
     root = gsl_root_fsolver_root(solver);
-    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(solver), gsl_root_fsolver_x_upper(solver), 0.0, 1e-15) ==
-        GSL_SUCCESS) {
+    if (gsl_root_test_interval(gsl_root_fsolver_x_lower(solver), gsl_root_fsolver_x_upper(solver), 0.0,
+                               1e-15) == GSL_SUCCESS) {
       break;
     }
   }

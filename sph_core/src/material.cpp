@@ -10,8 +10,8 @@
 #include <sstream>
 #include <string_view>
 
-#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/data_catalogue.hpp"
+#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit::sph {
@@ -263,7 +263,9 @@ Material parse_material(const toml::table& root, const std::string& name, const 
 
 }  // namespace
 
-std::vector<std::string> material_names() { return data_set_names("materials"); }
+std::vector<std::string> material_names() {
+  return data_set_names("materials");
+}
 
 Material load_material(const std::string& name_or_path) {
   const auto file = resolve_data_set(name_or_path, "materials", "material");

@@ -143,11 +143,12 @@ TEST(Population, ShippedMainBeltPopulationIsConsistent) {
 TEST(Population, ApproximateFlagIsReadAndChecked) {
   // The shipped main-belt table is an approximation, and says so in a key the CLI warns about.
   EXPECT_TRUE(ck::load_population("main_belt_approx_bottke2005").approximate);
-  const auto exact = temp_file("exact.toml",
-                               "kind = \"power_law\"\nslope = -4\nreference_diameter_km = 1\nnumber_larger = 1\n");
+  const auto exact = temp_file(
+      "exact.toml", "kind = \"power_law\"\nslope = -4\nreference_diameter_km = 1\nnumber_larger = 1\n");
   EXPECT_FALSE(ck::load_population_file(exact).approximate);
-  const auto wrong = temp_file("approx_wrong.toml", "kind = \"power_law\"\nslope = -4\nreference_diameter_km = 1\n"
-                                                     "number_larger = 1\napproximate = \"yes\"\n");
+  const auto wrong = temp_file("approx_wrong.toml",
+                               "kind = \"power_law\"\nslope = -4\nreference_diameter_km = 1\n"
+                               "number_larger = 1\napproximate = \"yes\"\n");
   try {
     ck::load_population_file(wrong);
     FAIL() << "expected InputError";

@@ -30,7 +30,8 @@ TEST(PAlpha, CrushCurveLimitsAndContinuity) {
 TEST(PAlpha, SlopeMatchesFiniteDifference) {
   for (double p : {2.0e6, 10.0e6, 50.0e6, 67.0e6, 69.0e6, 150.0e6, 212.0e6}) {
     const double dp = p * 1e-6;
-    const double fd = (crush_curve_distention(kNominal, p + dp) - crush_curve_distention(kNominal, p - dp)) / (2 * dp);
+    const double fd =
+        (crush_curve_distention(kNominal, p + dp) - crush_curve_distention(kNominal, p - dp)) / (2 * dp);
     EXPECT_NEAR(crush_curve_slope(kNominal, p), fd, 1e-6 * std::abs(fd) + 1e-18) << p;
     EXPECT_LT(crush_curve_slope(kNominal, p), 0.0);
   }

@@ -30,7 +30,8 @@ TEST(Strength, FrictionFromReposeAngle) {
 TEST(Strength, LundborgCurveHandValues) {
   const LundborgStrength law{100.0, 0.6, 3.5e9};
   // P = 1 MPa: 100 + 0.6e6 / (1 + 0.6e6 / (3.5e9 - 100)).
-  EXPECT_NEAR(lundborg_yield_strength(law, 100.0, 1.0e6), 100.0 + 0.6e6 / (1.0 + 0.6e6 / (3.5e9 - 100.0)), 1e-9);
+  EXPECT_NEAR(lundborg_yield_strength(law, 100.0, 1.0e6), 100.0 + 0.6e6 / (1.0 + 0.6e6 / (3.5e9 - 100.0)),
+              1e-9);
   // Far above: tends to Y_dm.
   EXPECT_NEAR(lundborg_yield_strength(law, 100.0, 1.0e15), 3.5e9, 3.5e9 * 1e-5);
   // Tension: linear extension reaching zero at P = -Y0/f.
@@ -72,7 +73,8 @@ TEST(Strength, JaumannRateRotatesStressRigidly) {
   L[1][0] = w;
   const DeviatoricStress s0{3.0, 1.0, 0.5, -1.0, 0.25};
   auto add = [](const DeviatoricStress& a, const DeviatoricStress& b, double k) {
-    return DeviatoricStress{a.xx + k * b.xx, a.xy + k * b.xy, a.xz + k * b.xz, a.yy + k * b.yy, a.yz + k * b.yz};
+    return DeviatoricStress{a.xx + k * b.xx, a.xy + k * b.xy, a.xz + k * b.xz, a.yy + k * b.yy,
+                            a.yz + k * b.yz};
   };
   DeviatoricStress s = s0;
   const double dt = 1e-3, t_end = 0.5;

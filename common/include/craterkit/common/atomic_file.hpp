@@ -1,13 +1,13 @@
 #pragma once
 // Atomic output: content is written to a temporary file beside the target and renamed over it only
 // once complete, so a killed run never leaves a truncated file under the final name.
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
-#include <unistd.h>
 
 namespace craterkit {
 

@@ -21,7 +21,8 @@ inline std::vector<std::string> data_set_names(const std::string& folder) {
   std::vector<std::string> names;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(data_file(folder), ec)) {
-    if (entry.is_regular_file() && entry.path().extension() == ".toml") names.push_back(entry.path().stem().string());
+    if (entry.is_regular_file() && entry.path().extension() == ".toml")
+      names.push_back(entry.path().stem().string());
   }
   std::sort(names.begin(), names.end());
   return names;
@@ -32,14 +33,14 @@ inline std::vector<std::string> data_set_names(const std::string& folder) {
 inline std::filesystem::path resolve_data_set(const std::string& name_or_path, const std::string& folder,
                                               const std::string& what) {
   const bool is_path = name_or_path.find('/') != std::string::npos || name_or_path.ends_with(".toml");
-  const std::filesystem::path file = is_path ? std::filesystem::path(name_or_path)
-                                             : data_file(folder) / (name_or_path + ".toml");
+  const std::filesystem::path file =
+      is_path ? std::filesystem::path(name_or_path) : data_file(folder) / (name_or_path + ".toml");
   if (!name_or_path.empty() && std::filesystem::is_regular_file(file)) return file;
   if (is_path) throw InputError(what + " file '" + name_or_path + "' does not exist");
   std::string names;
   for (const auto& n : data_set_names(folder)) names += (names.empty() ? "" : ", ") + n;
-  throw InputError(what + " '" + name_or_path + "' is not known; available: " + names + " (or give the path of a " +
-                   folder + " .toml file)");
+  throw InputError(what + " '" + name_or_path + "' is not known; available: " + names +
+                   " (or give the path of a " + folder + " .toml file)");
 }
 
 // Parses a TOML file; a missing file or a syntax error is an InputError "file:line:column: what".

@@ -28,15 +28,15 @@
 namespace craterkit::sph {
 
 struct RunParameters {
-  double end_time = 0.0;      // s (> 0, required)
+  double end_time = 0.0;        // s (> 0, required)
   std::uint64_t max_steps = 0;  // 0: unlimited
   std::array<double, 3> gravity{0.0, 0.0, 0.0};
 };
 
 struct OutputParameters {
-  std::vector<double> snapshot_times;  // s, ascending; the final state is always written too
-  std::uint64_t checkpoint_interval_steps = 0;   // 0: none by step count
-  double checkpoint_interval_seconds = 600.0;    // wall seconds between checkpoints (0: none)
+  std::vector<double> snapshot_times;           // s, ascending; the final state is always written too
+  std::uint64_t checkpoint_interval_steps = 0;  // 0: none by step count
+  double checkpoint_interval_seconds = 600.0;   // wall seconds between checkpoints (0: none)
   bool conservation_log = true;
 };
 

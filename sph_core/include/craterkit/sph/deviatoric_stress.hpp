@@ -44,7 +44,8 @@ inline DeviatoricStress jaumann_stress_rate(const DeviatoricStress& s, const Ten
   auto rate = [&](int a, int b) {
     double hooke = 2.0 * shear_modulus * (strain_rate[a][b] - (a == b ? trace_third : 0.0));
     double spin = 0.0;
-    for (int k = 0; k < 3; ++k) spin += S[a][k] * rotation[b][k] + rotation[a][k] * S[k][b];  // S Omega^T + Omega S
+    for (int k = 0; k < 3; ++k)
+      spin += S[a][k] * rotation[b][k] + rotation[a][k] * S[k][b];  // S Omega^T + Omega S
     return hooke + spin;
   };
   return {rate(0, 0), rate(0, 1), rate(0, 2), rate(1, 1), rate(1, 2)};

@@ -8,25 +8,27 @@
 namespace craterkit::sph {
 
 struct PAlphaParameters {
-  double initial_distention = 2.0;       // alpha0
-  double transition_distention = 1.25;   // alpha_t
-  double elastic_pressure = 1.0e6;       // P_e, Pa
-  double transition_pressure = 68.0e6;   // P_t, Pa
-  double solid_pressure = 213.0e6;       // P_s, Pa
-  double exponent_1 = 12.0;              // n1
-  double exponent_2 = 3.0;               // n2
+  double initial_distention = 2.0;      // alpha0
+  double transition_distention = 1.25;  // alpha_t
+  double elastic_pressure = 1.0e6;      // P_e, Pa
+  double transition_pressure = 68.0e6;  // P_t, Pa
+  double solid_pressure = 213.0e6;      // P_s, Pa
+  double exponent_1 = 12.0;             // n1
+  double exponent_2 = 3.0;              // n2
 };
 
 // alpha_c(P): the crush curve of physics.md section 2.
 inline double crush_curve_distention(const PAlphaParameters& p, double pressure) noexcept {
   if (pressure <= p.elastic_pressure) return p.initial_distention;
   if (pressure >= p.solid_pressure) return 1.0;
-  const double second = (p.transition_distention - 1.0) *
-                        std::pow((p.solid_pressure - pressure) / (p.solid_pressure - p.elastic_pressure), p.exponent_2);
+  const double second =
+      (p.transition_distention - 1.0) *
+      std::pow((p.solid_pressure - pressure) / (p.solid_pressure - p.elastic_pressure), p.exponent_2);
   if (pressure >= p.transition_pressure) return second + 1.0;
   const double first =
       (p.initial_distention - p.transition_distention) *
-      std::pow((p.transition_pressure - pressure) / (p.transition_pressure - p.elastic_pressure), p.exponent_1);
+      std::pow((p.transition_pressure - pressure) / (p.transition_pressure - p.elastic_pressure),
+               p.exponent_1);
   return first + second + 1.0;
 }
 
@@ -61,11 +63,11 @@ inline double distention_rate(const PAlphaParameters& p, double distention, doub
                               const MatrixResponse& matrix) noexcept {
   const double slope = crush_curve_slope(p, bulk_pressure);
   if (slope >= 0.0) return 0.0;  // elastic (P <= P_e) or fully compacted (P >= P_s)
-  const double loading = energy_rate * matrix.dpressure_denergy + distention * density_rate * matrix.dpressure_ddensity;
+  const double loading =
+      energy_rate * matrix.dpressure_denergy + distention * density_rate * matrix.dpressure_ddensity;
   if (loading <= 0.0) return 0.0;
   if (distention < crush_curve_distention(p, bulk_pressure)) return 0.0;  // inside the curve: elastic
-  const double denominator =
-      distention + slope * (bulk_pressure - bulk_density * matrix.dpressure_ddensity);
+  const double denominator = distention + slope * (bulk_pressure - bulk_density * matrix.dpressure_ddensity);
   if (denominator <= 0.0) return 0.0;
   return std::min(0.0, slope * loading / denominator);
 }

@@ -14,9 +14,9 @@
 namespace craterkit::sph {
 
 struct LundborgStrength {
-  double cohesion = 0.0;                  // Y0, Pa (intact, before strain weakening)
-  double friction_coefficient = 0.0;      // f, dimensionless
-  double limiting_strength = 3.5e9;       // Y_dm, Pa
+  double cohesion = 0.0;              // Y0, Pa (intact, before strain weakening)
+  double friction_coefficient = 0.0;  // f, dimensionless
+  double limiting_strength = 3.5e9;   // Y_dm, Pa
 };
 
 struct VonMisesStrength {
@@ -37,7 +37,8 @@ inline double weakened_cohesion(double cohesion, double total_strain) noexcept {
 }
 
 // Y(P) for the Lundborg law with a given (already weakened) cohesion Y0.
-inline double lundborg_yield_strength(const LundborgStrength& law, double cohesion, double pressure) noexcept {
+inline double lundborg_yield_strength(const LundborgStrength& law, double cohesion,
+                                      double pressure) noexcept {
   const double f = law.friction_coefficient;
   if (pressure >= 0.0) {
     const double span = law.limiting_strength - cohesion;  // > 0 by validation (Y_dm > Y0)
