@@ -29,6 +29,7 @@
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "production_flags.hpp"
 #include "scaling_flags.hpp"
 
 namespace {
@@ -39,14 +40,9 @@ using craterkit::InputError;
 struct AgeOptions {
   craterkit::cli::ScalingFlags scaling;
   std::string counts;
-  std::string body = "ryugu";
   std::vector<double> cohesion;
   std::string population = "main_belt_approx_bottke2005";
-  std::string region = "main_belt";
-  double rim_to_apparent = ck::DiameterConvention{}.rim_to_apparent;
-  std::string cross_section = "target+impactor";
-  std::optional<std::string> speed_table;
-  double impactor_density = 2600.0;
+  craterkit::cli::ProductionFlags production;
   std::optional<double> min_diameter;
   std::optional<double> max_diameter;
   std::optional<double> equilibrium;
@@ -117,32 +113,13 @@ void run_age(const AgeOptions& o) {
     check_plotting_available(script);
   }
   auto inputs = craterkit::cli::resolve_scaling_flags(o.scaling);
-  const ck::Body body = ck::load_body(o.body);
-  const auto region = ck::collision_region_from_string(o.region);
-  if (o.cohesion.empty()) throw InputError("--cohesion needs at least one value (Pa)");
-  for (double y : o.cohesion) {
-    if (!(y >= 0.0) || !std::isfinite(y))
-      throw InputError(fmt::format("--cohesion {} must be a finite number >= 0 Pa", y));
-  }
-  if (o.speed_table && o.scaling.velocity)
-    throw InputError("--velocity and --speed-table cannot both be given");
-  if (!(o.impactor_density > 0.0)) throw InputError("--impactor-density must be > 0 kg/m^3");
+  const ck::Body body = ck::load_body(o.production.body);
+  craterkit::cli::check_cohesions(o.cohesion);
   const ck::CraterCounts counts = ck::read_crater_counts(o.counts);
 
-  std::optional<ck::SpeedDistribution> speeds;
-  if (o.speed_table) speeds = ck::read_speed_distribution(*o.speed_table);
-  if (o.scaling.velocity) speeds = ck::single_speed(*o.scaling.velocity);
-  auto setup = ck::production_setup_for_body(body, region, ck::load_population(o.population),
-                                             speeds ? &*speeds : nullptr);
-  setup.diameter.rim_to_apparent = o.rim_to_apparent;
-  ck::validate(setup.diameter, "--rim-to-apparent");
-  if (o.cross_section == "target+impactor")
-    setup.cross_section = ck::CrossSection::target_plus_impactor;
-  else if (o.cross_section == "target")
-    setup.cross_section = ck::CrossSection::target_only;
-  else
-    throw InputError("--cross-section '" + o.cross_section +
-                     "' is not known; allowed: target+impactor, target");
+  const auto setup = craterkit::cli::resolve_production_flags(o.production, o.scaling, body,
+                                                              ck::load_population(o.population));
+  const auto region = ck::collision_region_from_string(o.production.region);
 
   ck::AgeFitOptions fit;
   if (o.min_diameter) {
@@ -160,7 +137,7 @@ void run_age(const AgeOptions& o) {
   craterkit::scaling::Target target;
   target.density = o.scaling.target_density.value_or(body.bulk_density);
   target.gravity = o.scaling.gravity.value_or(body.surface_gravity);
-  const double impactor_density = o.scaling.impactor_density.value_or(o.impactor_density);
+  const double impactor_density = o.scaling.impactor_density.value_or(o.production.impactor_density);
 
   // Observed cumulative SFD (per km^2) for the figure.
   nlohmann::json observed = nlohmann::json::array();
@@ -236,7 +213,7 @@ void run_age(const AgeOptions& o) {
       {"impactor_density", impactor_density},
       {"impact_speed", ck::mean_speed(setup.speeds)},
       {"rim_to_apparent", setup.diameter.rim_to_apparent},
-      {"cross_section", o.cross_section},
+      {"cross_section", o.production.cross_section},
       {"equilibrium_fraction",
        fit.cap.enabled ? nlohmann::json(fit.cap.fraction_of_geometric) : nlohmann::json(nullptr)},
       {"prior", fmt::format("uniform in age on [0, {:g}] yr", fit.max_age)}};
@@ -301,25 +278,13 @@ void add_age_command(CLI::App& parent) {
                   "Crater counts: .csv (diameters or binned cumulative), craterstats .diam, CraterTools .scc")
       ->required();
   craterkit::cli::add_scaling_flags(*sub, o->scaling);
-  sub->add_option("--body", o->body, "Target body: ryugu, bennu or a body .toml file (gives rho, g, U, P_i)")
-      ->capture_default_str();
+  craterkit::cli::add_production_flags(*sub, o->production);
   sub->add_option("--cohesion", o->cohesion,
                   "Cohesions Y of the scaling law, Pa (comma-separated); one age each")
       ->delimiter(',')
       ->required();
   sub->add_option("--population", o->population, "Impactor population in data/populations/ or a .toml file")
       ->capture_default_str();
-  sub->add_option("--region", o->region, "Collision environment of the body: main_belt or near_earth")
-      ->capture_default_str();
-  sub->add_option("--rim-to-apparent", o->rim_to_apparent,
-                  "Rim-to-rim over apparent crater diameter (scaling gives the apparent radius)")
-      ->capture_default_str();
-  sub->add_option("--cross-section", o->cross_section,
-                  "Impact cross-section: target+impactor ((R_t+a)^2, Bottke et al. 1994) or target (R_t^2)")
-      ->capture_default_str();
-  sub->add_option(
-      "--speed-table", o->speed_table,
-      "CSV of impact speeds (speed_m_s or speed_km_s) and weights to average over, instead of one speed");
   sub->add_option("--min-diameter", o->min_diameter,
                   "Smallest rim diameter of the fit range, m (default: smallest counted)");
   sub->add_option("--max-diameter", o->max_diameter, "Upper end of the fit range, m (default: none)");

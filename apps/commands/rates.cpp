@@ -16,6 +16,7 @@
 #include "craterkit/chronology/production.hpp"
 #include "craterkit/chronology/scaled_production.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "production_flags.hpp"
 #include "scaling_flags.hpp"
 
 namespace {
@@ -30,23 +31,15 @@ struct RatesOptions {
   std::vector<double> diameters;
   std::optional<double> q;
   std::optional<std::string> population;
-  std::string region = "main_belt";
-  double rim_to_apparent = ck::DiameterConvention{}.rim_to_apparent;
-  std::string cross_section = "target+impactor";
-  std::optional<std::string> speed_table;
+  craterkit::cli::ProductionFlags production;
   double impactor_density = 2600.0;
   bool json = false;
 };
 
 void run_rates(const RatesOptions& o) {
   auto inputs = craterkit::cli::resolve_scaling_flags(o.scaling);
-  const ck::Body body = ck::load_body(o.body);
-  const auto region = ck::collision_region_from_string(o.region);
-  if (o.cohesion.empty()) throw InputError("--cohesion needs at least one value (Pa)");
-  for (double y : o.cohesion) {
-    if (!(y >= 0.0) || !std::isfinite(y))
-      throw InputError(fmt::format("--cohesion {} must be a finite number >= 0 Pa", y));
-  }
+  const ck::Body body = ck::load_body(o.production.body);
+  craterkit::cli::check_cohesions(o.cohesion);
   if (o.diameters.empty()) throw InputError("--diameters needs at least one crater diameter (m)");
   for (double d : o.diameters) {
     if (!(d > 0.0) || !std::isfinite(d))
@@ -54,9 +47,6 @@ void run_rates(const RatesOptions& o) {
   }
   if (o.q && o.population)
     throw InputError("--q and --population cannot both be given: choose one impactor population");
-  if (o.speed_table && o.scaling.velocity)
-    throw InputError("--velocity and --speed-table cannot both be given");
-  if (!(o.impactor_density > 0.0)) throw InputError("--impactor-density must be > 0 kg/m^3");
 
   ck::ImpactorPopulation population;
   if (o.q) {
@@ -66,24 +56,13 @@ void run_rates(const RatesOptions& o) {
   } else {
     population = ck::load_population(o.population.value_or("main_belt_approx_bottke2005"));
   }
-  std::optional<ck::SpeedDistribution> speeds;
-  if (o.speed_table) speeds = ck::read_speed_distribution(*o.speed_table);
-  if (o.scaling.velocity) speeds = ck::single_speed(*o.scaling.velocity);
-  auto setup = ck::production_setup_for_body(body, region, population, speeds ? &*speeds : nullptr);
-  setup.diameter.rim_to_apparent = o.rim_to_apparent;
-  ck::validate(setup.diameter, "--rim-to-apparent");
-  if (o.cross_section == "target+impactor")
-    setup.cross_section = ck::CrossSection::target_plus_impactor;
-  else if (o.cross_section == "target")
-    setup.cross_section = ck::CrossSection::target_only;
-  else
-    throw InputError("--cross-section '" + o.cross_section +
-                     "' is not known; allowed: target+impactor, target");
+  const auto setup = craterkit::cli::resolve_production_flags(o.production, o.scaling, body, population);
+  const auto region = ck::collision_region_from_string(o.production.region);
 
   craterkit::scaling::Target target;
   target.density = o.scaling.target_density.value_or(body.bulk_density);
   target.gravity = o.scaling.gravity.value_or(body.surface_gravity);
-  const double impactor_density = o.scaling.impactor_density.value_or(o.impactor_density);
+  const double impactor_density = o.scaling.impactor_density.value_or(o.production.impactor_density);
   const double speed = ck::mean_speed(setup.speeds);
   const bool absolute = !o.q.has_value();
 
@@ -123,7 +102,7 @@ void run_rates(const RatesOptions& o) {
         {"impact_speed", speed},
         {"speed_distribution_entries", setup.speeds.speed.size()},
         {"rim_to_apparent", setup.diameter.rim_to_apparent},
-        {"cross_section", o.cross_section},
+        {"cross_section", o.production.cross_section},
         {"diameters", "rim-to-rim, m"},
         {"impactor_radius", "m, at the (mean) impact speed"},
         {"relative_rate", "rate of craters larger than the diameter, relative to the first cohesion"}};
@@ -155,8 +134,7 @@ void add_rates_command(CLI::App& parent) {
                                     "cohesion, per crater diameter and cohesion");
   auto o = std::make_shared<RatesOptions>();
   craterkit::cli::add_scaling_flags(*sub, o->scaling);
-  sub->add_option("--body", o->body, "Target body: ryugu, bennu or a body .toml file (gives rho, g, U, P_i)")
-      ->capture_default_str();
+  craterkit::cli::add_production_flags(*sub, o->production);
   sub->add_option("--cohesion", o->cohesion,
                   "Cohesions Y of the scaling law, Pa (comma-separated); rates are relative to the first")
       ->delimiter(',')
@@ -168,17 +146,6 @@ void add_rates_command(CLI::App& parent) {
   sub->add_option(
       "--population", o->population,
       "Impactor population in data/populations/ or a .toml file (default main_belt_approx_bottke2005)");
-  sub->add_option("--region", o->region, "Collision environment of the body: main_belt or near_earth")
-      ->capture_default_str();
-  sub->add_option("--rim-to-apparent", o->rim_to_apparent,
-                  "Rim-to-rim over apparent crater diameter (scaling gives the apparent radius)")
-      ->capture_default_str();
-  sub->add_option("--cross-section", o->cross_section,
-                  "Impact cross-section: target+impactor ((R_t+a)^2, Bottke et al. 1994) or target (R_t^2)")
-      ->capture_default_str();
-  sub->add_option(
-      "--speed-table", o->speed_table,
-      "CSV of impact speeds (speed_m_s or speed_km_s) and weights to average over, instead of one speed");
   sub->add_flag("--json", o->json, "Print JSON {\"rows\": [...]} instead of a table");
   sub->footer(
       "Target density and gravity default to the body's; --impactor-density defaults to 2600 kg/m^3 and the "
