@@ -9,129 +9,11 @@
 #include <toml++/toml.h>
 
 #include "craterkit/common/input_error.hpp"
+#include "toml_keys.hpp"
 
 namespace craterkit::sph {
 
 namespace {
-
-std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
-// One [table] of the file: typed getters that remember which keys were read, and finish() that
-// rejects every key not read (an unknown key, or a misspelt one).
-class Section {
- public:
-  Section(const toml::table* table, std::string name, std::string source)
-      : table_(table), name_(std::move(name)), source_(std::move(source)) {}
-
-  [[nodiscard]] std::string key(const std::string& k) const { return name_.empty() ? k : name_ + "." + k; }
-
-  [[noreturn]] void fail(const std::string& k, const std::string& what) const {
-    throw InputError(source_ + ": " + key(k) + ": " + what);
-  }
-
-  const toml::node* find(const std::string& k) {
-    used_.insert(k);
-    if (table_ == nullptr) return nullptr;
-    return table_->get(k);
-  }
-
-  // A number (integer or float) in [lo, hi] (open bounds when the flags say so).
-  double number(const std::string& k, double fallback, double lo, double hi, bool lo_open = false) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return fallback;
-    std::optional<double> v;
-    if (node->is_floating_point()) v = node->as_floating_point()->get();
-    if (node->is_integer()) v = static_cast<double>(node->as_integer()->get());
-    if (!v) fail(k, "expected a number");
-    const double x = *v;
-    const bool below = lo_open ? !(x > lo) : !(x >= lo);
-    if (below || !(x <= hi) || !std::isfinite(x)) {
-      fail(k, "value " + format_number(x) + " out of range: allowed " + (lo_open ? "(" : "[") +
-                  format_number(lo) + ", " + format_number(hi) + "]");
-    }
-    return x;
-  }
-
-  std::int64_t integer(const std::string& k, std::int64_t fallback, std::int64_t lo, std::int64_t hi) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return fallback;
-    if (!node->is_integer()) fail(k, "expected an integer");
-    const std::int64_t x = node->as_integer()->get();
-    if (x < lo || x > hi) {
-      fail(k, "value " + std::to_string(x) + " out of range: allowed [" + std::to_string(lo) + ", " +
-                  std::to_string(hi) + "]");
-    }
-    return x;
-  }
-
-  bool boolean(const std::string& k, bool fallback) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return fallback;
-    if (!node->is_boolean()) fail(k, "expected true or false");
-    return node->as_boolean()->get();
-  }
-
-  std::string text(const std::string& k, const std::string& fallback,
-                   const std::vector<std::string>& allowed = {}) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return fallback;
-    if (!node->is_string()) fail(k, "expected a string");
-    std::string v = node->as_string()->get();
-    if (!allowed.empty()) {
-      bool ok = false;
-      std::string list;
-      for (const auto& a : allowed) {
-        ok = ok || a == v;
-        list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
-      }
-      if (!ok) fail(k, "value \"" + v + "\" not allowed: one of " + list);
-    }
-    return v;
-  }
-
-  std::vector<double> numbers(const std::string& k, const std::vector<double>& fallback) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return fallback;
-    const toml::array* array = node->as_array();
-    if (array == nullptr) fail(k, "expected an array of numbers");
-    std::vector<double> out;
-    for (std::size_t i = 0; i < array->size(); ++i) {
-      const toml::node& e = *array->get(i);
-      if (e.is_floating_point()) {
-        out.push_back(e.as_floating_point()->get());
-      } else if (e.is_integer()) {
-        out.push_back(static_cast<double>(e.as_integer()->get()));
-      } else {
-        fail(k, "element " + std::to_string(i) + " is not a number");
-      }
-      if (!std::isfinite(out.back())) fail(k, "element " + std::to_string(i) + " is not finite");
-    }
-    return out;
-  }
-
-  void finish() const {
-    if (table_ == nullptr) return;
-    for (const auto& [k, node] : *table_) {
-      const std::string name(k.str());
-      if (used_.count(name) == 0) {
-        std::string list;
-        for (const auto& u : used_) list += (list.empty() ? "" : ", ") + u;
-        throw InputError(source_ + ": unknown key " + key(name) + " (allowed here: " + list + ")");
-      }
-    }
-  }
-
- private:
-  const toml::table* table_;
-  std::string name_;
-  std::string source_;
-  std::set<std::string> used_;
-};
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 constexpr std::int64_t int_max = std::numeric_limits<std::int64_t>::max();
@@ -174,11 +56,11 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     }
     if (!node.is_table()) throw InputError(source + ": " + name + " must be a table ([" + name + "])");
   }
-  auto section = [&](const std::string& name) { return Section(root[name].as_table(), name, source); };
+  auto section = [&](const std::string& name) { return TomlKeys(root[name].as_table(), name, source); };
 
   SimulationConfig c;
   {
-    Section s = section("problem");
+    TomlKeys s = section("problem");
     c.name = s.text("name", "simulation");
     const std::string setup = s.text("setup", "", {"sedov", "sod", "plates"});
     if (setup.empty()) s.fail("setup", "missing: one of \"sedov\", \"sod\", \"plates\"");
@@ -190,7 +72,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       }
     }
     if (setup == "sedov") {
-      Section t = section("sedov");
+      TomlKeys t = section("sedov");
       SedovSetup p;
       p.material = t.text("material", p.material);
       p.particles_per_side = static_cast<int>(t.integer("particles_per_side", p.particles_per_side, 4, 400));
@@ -202,7 +84,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       t.finish();
       c.setup = p;
     } else if (setup == "sod") {
-      Section t = section("sod");
+      TomlKeys t = section("sod");
       SodSetup p;
       p.material = t.text("material", p.material);
       p.left_particles_per_length =
@@ -215,7 +97,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       t.finish();
       c.setup = p;
     } else {
-      Section t = section("plates");
+      TomlKeys t = section("plates");
       PlateImpactSetup p;
       p.projectile_material = t.text("projectile_material", p.projectile_material);
       p.target_material = t.text("target_material", p.target_material);
@@ -234,18 +116,18 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     }
   }
   {
-    Section s = section("run");
+    TomlKeys s = section("run");
     c.run.end_time = s.number("end_time", 0.0, 0.0, inf, true);
     if (!root["run"]["end_time"]) s.fail("end_time", "missing: the simulated end time in s (> 0)");
     c.run.max_steps = static_cast<std::uint64_t>(s.integer("max_steps", 0, 0, int_max));
-    const auto g = s.numbers("gravity", {0.0, 0.0, 0.0});
+    const auto g = s.numbers("gravity").value_or(std::vector<double>{0.0, 0.0, 0.0});
     if (g.size() != 3)
       s.fail("gravity", "expected 3 components [gx, gy, gz], got " + std::to_string(g.size()));
     c.run.gravity = {g[0], g[1], g[2]};
     s.finish();
   }
   {
-    Section s = section("kernel");
+    TomlKeys s = section("kernel");
     const std::string type = s.text("type", "cubic_spline", {"cubic_spline", "wendland_c2"});
     c.kernel = type == "wendland_c2" ? KernelType::wendland_c2 : KernelType::cubic_spline;
     c.smoothing.eta = s.number("eta", c.smoothing.eta, 0.8, 3.0);
@@ -258,7 +140,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     s.finish();
   }
   {
-    Section s = section("viscosity");
+    TomlKeys s = section("viscosity");
     auto& v = c.viscosity;
     v.alpha = s.number("alpha", v.alpha, 0.0, 10.0);
     v.beta = s.number("beta", v.beta, 0.0, 20.0);
@@ -272,7 +154,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     s.finish();
   }
   {
-    Section s = section("time_step");
+    TomlKeys s = section("time_step");
     auto& t = c.time_step;
     t.courant = s.number("courant", t.courant, 0.0, 1.0, true);
     t.acceleration_factor = s.number("acceleration_factor", t.acceleration_factor, 0.0, 1.0, true);
@@ -283,16 +165,16 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     s.finish();
   }
   {
-    Section s = section("neighbours");
+    TomlKeys s = section("neighbours");
     auto& n = c.neighbours;
     n.search.skin = s.number("skin", n.search.skin, 0.0, 1.0);
     n.sort_interval = static_cast<std::uint64_t>(s.integer("sort_interval", 20, 0, int_max));
     s.finish();
   }
   {
-    Section s = section("output");
+    TomlKeys s = section("output");
     auto& o = c.output;
-    o.snapshot_times = s.numbers("snapshot_times", {});
+    o.snapshot_times = s.numbers("snapshot_times").value_or(std::vector<double>{});
     for (std::size_t i = 0; i < o.snapshot_times.size(); ++i) {
       if (o.snapshot_times[i] < 0.0 || (i > 0 && o.snapshot_times[i] <= o.snapshot_times[i - 1])) {
         s.fail("snapshot_times", "element " + std::to_string(i) + " (" + format_number(o.snapshot_times[i]) +

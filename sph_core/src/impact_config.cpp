@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "craterkit/common/input_error.hpp"
+#include "toml_keys.hpp"
 
 namespace craterkit::sph {
 
@@ -16,162 +17,41 @@ namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-
-// One TOML table with typed getters that remember the keys read; finish() rejects the others
-// (the same rules and messages as config.cpp's sections).
-class Keys {
- public:
-  Keys(const toml::table& table, std::string name, std::string source)
-      : table_(table), name_(std::move(name)), source_(std::move(source)) {}
-
-  [[nodiscard]] std::string key(const std::string& k) const { return name_ + "." + k; }
-  [[nodiscard]] const std::string& source() const { return source_; }
-
-  [[noreturn]] void fail(const std::string& k, const std::string& what) const {
-    throw InputError(source_ + ": " + key(k) + ": " + what);
-  }
-
-  const toml::node* find(const std::string& k) {
-    used_.insert(k);
-    return table_.get(k);
-  }
-
-  // A finite number in [lo, hi] (lower bound open when lo_open).
-  double number(const std::string& k, double fallback, double lo, double hi, bool lo_open = false) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return fallback;
-    const double x = as_number(node, k);
-    const bool below = lo_open ? !(x > lo) : !(x >= lo);
-    if (below || !(x <= hi) || !std::isfinite(x)) {
-      fail(k, "value " + format_number(x) + " out of range: allowed " + (lo_open ? "(" : "[") +
-                  format_number(lo) + ", " + format_number(hi) + "]");
-    }
-    return x;
-  }
-
-  std::optional<double> required_number(const std::string& k, double lo, double hi, bool lo_open = false) {
-    if (table_.get(k) == nullptr) {
-      used_.insert(k);
-      return std::nullopt;
-    }
-    return number(k, 0.0, lo, hi, lo_open);
-  }
-
-  std::string text(const std::string& k, const std::string& fallback,
-                   const std::vector<std::string>& allowed = {}) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return fallback;
-    if (!node->is_string()) fail(k, "expected a string");
-    std::string v = node->as_string()->get();
-    if (!allowed.empty()) {
-      bool ok = false;
-      std::string list;
-      for (const auto& a : allowed) {
-        ok = ok || a == v;
-        list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
-      }
-      if (!ok) fail(k, "value \"" + v + "\" not allowed: one of " + list);
-    }
-    if (v.empty()) fail(k, "must not be empty");
-    return v;
-  }
-
-  // An array of exactly `count` numbers (infinite values allowed only when allow_infinite).
-  std::optional<std::vector<double>> vector(const std::string& k, std::size_t count,
-                                            bool allow_infinite = false) {
-    const toml::node* node = find(k);
-    if (node == nullptr) return std::nullopt;
-    const toml::array* array = node->as_array();
-    if (array == nullptr) fail(k, "expected an array of " + std::to_string(count) + " numbers");
-    if (array->size() != count) {
-      fail(k, "expected " + std::to_string(count) + " numbers, got " + std::to_string(array->size()));
-    }
-    std::vector<double> out;
-    for (std::size_t i = 0; i < array->size(); ++i) {
-      const toml::node& e = *array->get(i);
-      std::optional<double> v;
-      if (e.is_floating_point()) v = e.as_floating_point()->get();
-      if (e.is_integer()) v = static_cast<double>(e.as_integer()->get());
-      if (!v) fail(k, "element " + std::to_string(i) + " is not a number");
-      if (std::isnan(*v) || (!allow_infinite && !std::isfinite(*v))) {
-        fail(k, "element " + std::to_string(i) + " is not finite");
-      }
-      out.push_back(*v);
-    }
-    return out;
-  }
-
-  std::vector<double> required_vector(const std::string& k, std::size_t count, bool allow_infinite = false) {
-    auto v = vector(k, count, allow_infinite);
-    if (!v) fail(k, "missing: an array of " + std::to_string(count) + " numbers");
-    return *v;
-  }
-
-  void finish() const {
-    for (const auto& [k, node] : table_) {
-      const std::string name(k.str());
-      if (used_.count(name) == 0) {
-        std::string list;
-        for (const auto& u : used_) list += (list.empty() ? "" : ", ") + u;
-        throw InputError(source_ + ": unknown key " + key(name) + " (allowed here: " + list + ")");
-      }
-    }
-  }
-
- private:
-  double as_number(const toml::node* node, const std::string& k) const {
-    if (node->is_floating_point()) return node->as_floating_point()->get();
-    if (node->is_integer()) return static_cast<double>(node->as_integer()->get());
-    fail(k, "expected a number");
-  }
-
-  const toml::table& table_;
-  std::string name_;
-  std::string source_;
-  std::set<std::string> used_;
-};
-
 // One shape primitive from a table holding `shape` and its keys (the other keys of `t` are the caller's).
-ShapePart parse_part(Keys& t) {
+ShapePart parse_part(TomlKeys& t) {
   const std::string shape = t.text("shape", "", {"sphere", "cylinder", "half_space", "box"});
   if (shape.empty()) t.fail("shape", "missing: one of \"sphere\", \"cylinder\", \"half_space\", \"box\"");
   if (shape == "sphere") {
     Sphere s;
-    const auto c = t.required_vector("centre", 3);
+    const auto c = t.required_numbers("centre", 3);
     s.centre = {c[0], c[1], c[2]};
-    const auto r = t.required_number("radius", 0.0, inf, true);
+    const auto r = t.optional_number("radius", 0.0, inf, true);
     if (!r) t.fail("radius", "missing: the sphere radius in m (> 0)");
     s.radius = *r;
     return s;
   }
   if (shape == "cylinder") {
     VerticalCylinder c;
-    const auto a = t.required_vector("axis", 2);
+    const auto a = t.required_numbers("axis", 2);
     c.axis = {a[0], a[1]};
-    const auto r = t.required_number("radius", 0.0, inf, true);
+    const auto r = t.optional_number("radius", 0.0, inf, true);
     if (!r) t.fail("radius", "missing: the cylinder radius in m (> 0)");
     c.radius = *r;
     return c;
   }
   if (shape == "half_space") {
     HalfSpace h;
-    const auto n = t.required_vector("normal", 3);
+    const auto n = t.required_numbers("normal", 3);
     if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) t.fail("normal", "must not be the zero vector");
     h.normal = {n[0], n[1], n[2]};
-    const auto o = t.required_number("offset", -inf, inf);
+    const auto o = t.optional_number("offset", -inf, inf);
     if (!o) t.fail("offset", "missing: the points with normal . x < offset are inside (m)");
     h.offset = *o;
     return h;
   }
   AxisAlignedBox b;
-  const auto lower = t.vector("lower", 3, true);
-  const auto upper = t.vector("upper", 3, true);
+  const auto lower = t.numbers("lower", 3, true);
+  const auto upper = t.numbers("upper", 3, true);
   if (!lower && !upper) t.fail("lower", "missing: a box needs lower and/or upper corners (m)");
   if (lower) b.lower = {(*lower)[0], (*lower)[1], (*lower)[2]};
   if (upper) b.upper = {(*upper)[0], (*upper)[1], (*upper)[2]};
@@ -184,7 +64,7 @@ ShapePart parse_part(Keys& t) {
 
 ImpactBoulder parse_boulder(const toml::table& table, std::size_t index, const std::string& source) {
   const std::string name = "impact.boulders[" + std::to_string(index) + "]";
-  Keys t(table, name, source);
+  TomlKeys t(&table, name, source);
   ImpactBoulder b;
   b.name = t.text("name", std::to_string(index + 1));
   for (char ch : b.name) {
@@ -202,7 +82,7 @@ ImpactBoulder parse_boulder(const toml::table& table, std::size_t index, const s
     for (std::size_t j = 0; j < array->size(); ++j) {
       const toml::table* part = array->get(j)->as_table();
       if (part == nullptr) t.fail("parts", "element " + std::to_string(j) + " is not a table");
-      Keys pt(*part, name + ".parts[" + std::to_string(j) + "]", source);
+      TomlKeys pt(part, name + ".parts[" + std::to_string(j) + "]", source);
       b.shape.parts.push_back(parse_part(pt));
       pt.finish();
     }
@@ -216,7 +96,7 @@ ImpactBoulder parse_boulder(const toml::table& table, std::size_t index, const s
 }  // namespace
 
 ImpactSetup parse_impact_setup(const toml::table& impact, const std::string& source) {
-  Keys t(impact, "impact", source);
+  TomlKeys t(&impact, "impact", source);
   ImpactSetup s;
   s.target_material = t.text("target_material", s.target_material);
   s.projectile_material = t.text("projectile_material", s.projectile_material);
