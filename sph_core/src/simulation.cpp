@@ -71,7 +71,9 @@ void Simulation::configure() {
   rate_options_.viscosity = config_.viscosity;
   rate_options_.gravity = config_.run.gravity;
   rate_options_.period = periods(problem_.box);
-  rate_options_.solid = false;  // deviatoric stress arrives with the strength models (issue 5)
+  rate_options_.solid = false;
+  for (const auto& m : problem_.materials)
+    rate_options_.solid = rate_options_.solid || m.strength.has_value();
   problem_.particles.shrink_to_fit();
 }
 
@@ -108,7 +110,11 @@ Simulation::Simulation(SimulationConfig config, ProblemSetup problem, Particles 
 
 void Simulation::update_equation_of_state() {
   auto scope = timers_.measure("equation_of_state");
-  update_pressure(problem_.particles, equations_of_state_, rate_workspace_);
+  if (rate_options_.solid) {
+    update_material_state(problem_.particles, problem_.materials, rate_workspace_, shear_modulus_);
+  } else {
+    update_pressure(problem_.particles, equations_of_state_, rate_workspace_);
+  }
 }
 
 void Simulation::evaluate_rates() {
@@ -125,8 +131,9 @@ void Simulation::evaluate_rates() {
   update_equation_of_state();
   {
     auto scope = timers_.measure("rates");
-    rate_summary_ =
-        compute_rates(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_, rate_workspace_);
+    rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
+                                  rate_workspace_, rate_options_.solid ? &gradients_ : nullptr);
+    if (rate_options_.solid) compute_stress_rates(p, gradients_, shear_modulus_);
   }
 }
 
@@ -194,10 +201,14 @@ double Simulation::bytes_per_particle() const {
   });
   bytes += lists_.bytes() + search_.workspace_bytes();
   const auto& w = integrator_workspace_;
-  for (const auto* v : {&w.acceleration_x, &w.acceleration_y, &w.acceleration_z, &w.density_rate,
-                        &w.energy_rate, &w.viscosity_alpha_rate}) {
+  for (const auto* v :
+       {&w.acceleration_x, &w.acceleration_y, &w.acceleration_z, &w.density_rate, &w.energy_rate,
+        &w.viscosity_alpha_rate, &w.stress_rate_xx, &w.stress_rate_xy, &w.stress_rate_xz, &w.stress_rate_yy,
+        &w.stress_rate_yz, &w.total_strain_rate, &shear_modulus_}) {
     bytes += v->capacity() * sizeof(double);
   }
+  for (const auto& v : gradients_.corrected) bytes += v.capacity() * sizeof(double);
+  for (const auto& v : gradients_.uncorrected) bytes += v.capacity() * sizeof(double);
   bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
   bytes += rate_workspace_.volume.capacity() * sizeof(double);
   bytes += order_.capacity() * sizeof(std::uint32_t);

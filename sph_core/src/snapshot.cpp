@@ -58,6 +58,12 @@ std::string field_unit(std::string_view field_name) {
       {"density_rate", "kg/m^3/s"},
       {"energy_rate", "W/kg"},
       {"viscosity_alpha_rate", "1/s"},
+      {"stress_rate_xx", "Pa/s"},
+      {"stress_rate_xy", "Pa/s"},
+      {"stress_rate_xz", "Pa/s"},
+      {"stress_rate_yy", "Pa/s"},
+      {"stress_rate_yz", "Pa/s"},
+      {"total_strain_rate", "1/s"},
   };
   for (const auto& [name, unit] : units) {
     if (name == field_name) return std::string(unit);

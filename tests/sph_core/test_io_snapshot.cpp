@@ -151,6 +151,17 @@ TEST(IoSnapshot, DatasetsCarryTheirUnits) {
   EXPECT_EQ(sph::field_unit("id"), "");
 }
 
+TEST(IoSnapshot, EveryPhysicalFieldHasAUnit) {
+  // A field added to Particles must say its unit (identifiers, materials and flags have none).
+  const sph::Particles particles;
+  particles.for_each_field([](std::string_view name, const auto& field) {
+    using Value = typename std::decay_t<decltype(field)>::value_type;
+    if constexpr (std::is_floating_point_v<Value>) {
+      EXPECT_FALSE(sph::field_unit(name).empty()) << name;
+    }
+  });
+}
+
 TEST(IoSnapshot, VisualisationVectorsInterleaveTheComponents) {
   ScratchDirectory dir("snapshot_vectors");
   const auto particles = random_particles(100, 3);

@@ -5,9 +5,10 @@
 //
 //   predict:  v^{n+1/2} = v^n + dt/2 a^n,  x^{n+1} = x^n + dt v^{n+1/2},
 //             state used for the new rates: v* = v^n + dt a^n, rho* = rho^n + dt drho^n,
-//             u* = u^n + dt du^n, alpha* = alpha^n + dt dalpha^n
+//             u* = u^n + dt du^n, alpha* = alpha^n + dt dalpha^n, S* = S^n + dt dS^n,
+//             eps* = eps^n + dt deps^n (deviatoric stress and total strain; zero for fluids)
 //   (rates r^{n+1} evaluated at x^{n+1} and the predicted state)
-//   correct:  q^{n+1} = q* + dt/2 (r^{n+1} - r^n)   for q = v, rho, u, alpha
+//   correct:  q^{n+1} = q* + dt/2 (r^{n+1} - r^n)   for q = v, rho, u, alpha, S, eps
 //             (= q^n + dt/2 (r^n + r^{n+1}): trapezoidal, second order)
 //
 // Fixed and ejected particles are not advanced. The smoothing length follows the density,
@@ -39,7 +40,8 @@ struct SmoothingLengthParameters {
 // The rates of step n, kept between predict() and correct().
 struct IntegratorWorkspace {
   std::vector<double> acceleration_x, acceleration_y, acceleration_z, density_rate, energy_rate,
-      viscosity_alpha_rate;
+      viscosity_alpha_rate, stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz,
+      total_strain_rate;
 };
 
 // Kick, drift (positions wrapped into the box on periodic axes) and predicted state.

@@ -54,6 +54,10 @@ struct Particles {
   std::vector<double> density_rate;                                    // drho/dt, kg/m^3/s
   std::vector<double> energy_rate;                                     // du/dt, W/kg
   std::vector<double> viscosity_alpha_rate;                            // dalpha/dt, 1/s
+  // Solid mechanics (stress_rates.hpp; zero for fluids): the Jaumann rate dS/dt, Pa/s, and the rate
+  // of the accumulated strain, 1/s.
+  std::vector<double> stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz;
+  std::vector<double> total_strain_rate;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
   void resize(std::size_t n);  // new entries: zeros, distention 1, flags active
@@ -95,6 +99,12 @@ struct Particles {
     visit(std::string_view{"density_rate"}, density_rate);
     visit(std::string_view{"energy_rate"}, energy_rate);
     visit(std::string_view{"viscosity_alpha_rate"}, viscosity_alpha_rate);
+    visit(std::string_view{"stress_rate_xx"}, stress_rate_xx);
+    visit(std::string_view{"stress_rate_xy"}, stress_rate_xy);
+    visit(std::string_view{"stress_rate_xz"}, stress_rate_xz);
+    visit(std::string_view{"stress_rate_yy"}, stress_rate_yy);
+    visit(std::string_view{"stress_rate_yz"}, stress_rate_yz);
+    visit(std::string_view{"total_strain_rate"}, total_strain_rate);
   }
   template <class Visitor>
   void for_each_field(Visitor&& visit) const {

@@ -5,8 +5,12 @@
 //   sort along the space-filling curve (every sort_interval steps)
 //   -> predict (kick, drift, predicted state; integrator.hpp)
 //   -> neighbours (rebuilt when the skin no longer covers the motion, after a sort or checkpoint)
-//   -> equation of state per particle -> rates (pair pass) -> correct -> equation of state
-//   -> next time step
+//   -> equation of state per particle -> rates (pair pass) [-> stress rates] -> correct
+//   -> equation of state -> next time step
+//
+// Solid mechanics is on when any material has a [strength] block: the equation-of-state phase then
+// evaluates the full material (floor, longitudinal signal speed, shear modulus, radial return) and the
+// stress rates follow the pair pass (stress_rates.hpp). Fluid-only runs take the fluid path unchanged.
 //
 // run_simulation() adds the outputs around the steps: HDF5 snapshots at the requested times (with
 // XDMF), a checkpoint (atomically replaced) every N steps or wall seconds and at the end, the
@@ -26,6 +30,7 @@
 #include "craterkit/sph/rates.hpp"
 #include "craterkit/sph/setups.hpp"
 #include "craterkit/sph/snapshot.hpp"
+#include "craterkit/sph/stress_rates.hpp"
 #include "craterkit/sph/time_step.hpp"
 
 namespace craterkit::sph {
@@ -82,6 +87,8 @@ class Simulation {
   NeighbourSearch search_;
   NeighbourLists lists_;
   RateWorkspace rate_workspace_;
+  VelocityGradients gradients_;        // solid runs only
+  std::vector<double> shear_modulus_;  // solid runs only: G per particle, Pa
   IntegratorWorkspace integrator_workspace_;
   std::vector<std::uint32_t> order_;
   PhaseTimers timers_;
