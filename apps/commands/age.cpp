@@ -198,12 +198,7 @@ void run_age(const AgeOptions& o) {
                    {"binned", counts.binned()},
                    {"craters", counts.binned() ? counts.bins.front().cumulative_count
                                                : static_cast<double>(counts.diameters.size())}};
-  out["scaling_law"] = {{"source", inputs.law_source},
-                        {"form", craterkit::scaling::to_string(inputs.law.form)},
-                        {"coefficient_1", inputs.law.coefficient_1},
-                        {"coefficient_2", inputs.law.coefficient_2},
-                        {"mu", inputs.law.mu},
-                        {"nu", inputs.law.nu}};
+  out["scaling_law"] = craterkit::cli::scaling_law_json(inputs);
   out["conventions"] = {
       {"body", body.name},
       {"region", ck::to_string(region)},

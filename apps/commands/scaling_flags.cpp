@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/constant_sets.hpp"
 #include "craterkit/scaling/fit_json.hpp"
@@ -11,18 +12,11 @@
 namespace craterkit::cli {
 namespace {
 
-std::string number(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
-
 void check_flag(const std::optional<double>& value, const std::string& flag, bool allow_zero) {
   if (!value) return;
   const bool ok = std::isfinite(*value) && (allow_zero ? *value >= 0.0 : *value > 0.0);
   if (!ok) {
-    throw InputError(flag + " " + number(*value) + " is not allowed: must be a finite number " +
+    throw InputError(flag + " " + format_number(*value) + " is not allowed: must be a finite number " +
                      (allow_zero ? ">= 0" : "> 0"));
   }
 }
@@ -69,7 +63,7 @@ ScalingInputs resolve_scaling_flags(const ScalingFlags& flags) {
   check_flag(flags.velocity, "--velocity", false);
   check_flag(flags.strength, "--strength", true);
   if (flags.mu && *flags.mu > 1.0) {
-    throw InputError("--mu " + number(*flags.mu) +
+    throw InputError("--mu " + format_number(*flags.mu) +
                      " is not allowed: must be in (0, 1] (1/3 .. 2/3 expected)");
   }
 
@@ -139,6 +133,15 @@ ScalingInputs resolve_scaling_flags(const ScalingFlags& flags) {
   out.impactor_density = flags.impactor_density;
   out.velocity = flags.velocity;
   return out;
+}
+
+nlohmann::json scaling_law_json(const ScalingInputs& inputs) {
+  return {{"source", inputs.law_source},
+          {"form", scaling::to_string(inputs.law.form)},
+          {"coefficient_1", inputs.law.coefficient_1},
+          {"coefficient_2", inputs.law.coefficient_2},
+          {"mu", inputs.law.mu},
+          {"nu", inputs.law.nu}};
 }
 
 }  // namespace craterkit::cli

@@ -33,6 +33,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "craterkit/scaling/point_source.hpp"
 
@@ -68,6 +69,9 @@ struct ScalingInputs {
 
 // Applies the rules above; throws craterkit::InputError naming the flag, the value and what is allowed.
 ScalingInputs resolve_scaling_flags(const ScalingFlags& flags);
+
+// The law of `inputs` as reported in the JSON output of commands: source, form, coefficients, mu, nu.
+nlohmann::json scaling_law_json(const ScalingInputs& inputs);
 
 // The value, or InputError "<flag> is required ..." when it is empty.
 double require_value(const std::optional<double>& value, const std::string& flag);

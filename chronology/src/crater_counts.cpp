@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "text_table.hpp"
 
@@ -16,18 +17,13 @@ using detail::split_fields;
 using detail::trim;
 using detail::where;
 
-std::string num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 void add_crater(CraterCounts& c, double diameter, double fraction, const std::string& path,
                 std::size_t line) {
   if (!(diameter > 0.0))
-    throw InputError(where(path, line) + ": crater diameter " + num(diameter) + " must be > 0");
+    throw InputError(where(path, line) + ": crater diameter " + format_number(diameter) + " must be > 0");
   if (!(fraction > 0.0 && fraction <= 1.0)) {
-    throw InputError(where(path, line) + ": crater fraction " + num(fraction) + " must be in (0, 1]");
+    throw InputError(where(path, line) + ": crater fraction " + format_number(fraction) +
+                     " must be in (0, 1]");
   }
   c.diameters.push_back(diameter);
   c.fractions.push_back(fraction);
@@ -115,7 +111,8 @@ CraterCounts read_craterstats(const std::string& path, const std::string& area_k
 }  // namespace
 
 void validate(const CraterCounts& c) {
-  if (!(c.area > 0.0)) throw InputError(c.source + ": counting area " + num(c.area) + " m^2 must be > 0");
+  if (!(c.area > 0.0))
+    throw InputError(c.source + ": counting area " + format_number(c.area) + " m^2 must be > 0");
   if (c.binned()) {
     for (std::size_t i = 0; i < c.bins.size(); ++i) {
       if (!(c.bins[i].diameter > 0.0) || !(c.bins[i].cumulative_count >= 0.0)) {

@@ -5,18 +5,13 @@
 #include <numeric>
 #include <sstream>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit::chronology {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 // Production quantities at one diameter: r(D) and, for the cap, -dr/dD.
 struct ProductionPoint {
@@ -31,7 +26,7 @@ ProductionPoint evaluate(const ProductionFunction& production, double d, bool ne
   if (std::isinf(d)) return p;
   p.rate = production(d);
   if (!(p.rate >= 0.0) || !std::isfinite(p.rate)) {
-    throw InputError("production rate at D = " + num(d) + " m is " + num(p.rate) +
+    throw InputError("production rate at D = " + format_number(d) + " m is " + format_number(p.rate) +
                      "; expected a finite value >= 0");
   }
   if (need_slope) {
@@ -114,7 +109,8 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
                           const AgeFitOptions& options) {
   validate(counts);
   validate(options.cap);
-  if (!(options.max_age > 0.0)) throw InputError("maximum age " + num(options.max_age) + " yr must be > 0");
+  if (!(options.max_age > 0.0))
+    throw InputError("maximum age " + format_number(options.max_age) + " yr must be > 0");
   if (options.grid_points < 101) throw InputError("age grid needs at least 101 points");
   AgeEstimate out;
   Likelihood like;
@@ -132,8 +128,8 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
       if (bins[j].diameter >= dmin && bins[j].diameter <= options.max_diameter) used.push_back(j);
     }
     if (used.empty()) {
-      throw InputError(counts.source + ": no bins with diameters in the fit range [" + num(dmin) + ", " +
-                       num(options.max_diameter) + "] m");
+      throw InputError(counts.source + ": no bins with diameters in the fit range [" + format_number(dmin) +
+                       ", " + format_number(options.max_diameter) + "] m");
     }
     for (std::size_t j : used) {
       like.edges.push_back(evaluate(production, bins[j].diameter, false));
@@ -155,8 +151,8 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
                             ? options.min_diameter
                             : *std::min_element(counts.diameters.begin(), counts.diameters.end());
     if (!(options.max_diameter > dmin)) {
-      throw InputError("fit range: maximum diameter " + num(options.max_diameter) +
-                       " m must exceed minimum " + num(dmin) + " m");
+      throw InputError("fit range: maximum diameter " + format_number(options.max_diameter) +
+                       " m must exceed minimum " + format_number(dmin) + " m");
     }
     out.min_diameter = dmin;
     out.max_diameter = options.max_diameter;
@@ -182,8 +178,9 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
     out.production_in_range = like.lower.rate - like.upper.rate;
   }
   if (!(out.production_in_range > 0.0)) {
-    throw InputError("the production function makes no craters in the fit range [" + num(out.min_diameter) +
-                     ", " + num(out.max_diameter) + "] m; widen the range");
+    throw InputError("the production function makes no craters in the fit range [" +
+                     format_number(out.min_diameter) + ", " + format_number(out.max_diameter) +
+                     "] m; widen the range");
   }
 
   // Coarse logarithmic scan around the uncapped estimate, then a fine grid where the likelihood is

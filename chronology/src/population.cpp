@@ -8,6 +8,7 @@
 
 #include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/data_path.hpp"
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "text_table.hpp"
 
@@ -15,12 +16,6 @@ namespace craterkit::chronology {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-std::string num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 // Integral of c x^q from lo to hi (hi may be infinite when q < -1).
 double power_integral(double c, double q, double lo, double hi) {
@@ -63,9 +58,9 @@ double broken_scale(const BrokenPowerLaw& b, const std::vector<double>& c) {
 // Table segment k with radius[k] <= a <= radius[k+1]; throws outside the table.
 std::size_t table_segment(const CumulativeTable& t, double a) {
   if (!(a >= t.radius.front() && a <= t.radius.back())) {
-    throw InputError("impactor radius " + num(a) + " m is outside the tabulated population range [" +
-                     num(t.radius.front()) + ", " + num(t.radius.back()) +
-                     "] m; use a population that covers these sizes");
+    throw InputError("impactor radius " + format_number(a) +
+                     " m is outside the tabulated population range [" + format_number(t.radius.front()) +
+                     ", " + format_number(t.radius.back()) + "] m; use a population that covers these sizes");
   }
   auto it = std::upper_bound(t.radius.begin(), t.radius.end(), a);
   std::size_t k = static_cast<std::size_t>(it - t.radius.begin());
@@ -85,7 +80,7 @@ void validate(const ImpactorPopulation& population) {
   const std::string who = "population '" + population.name + "'";
   if (const auto* p = std::get_if<PowerLaw>(&population.shape)) {
     if (!(p->slope < -1.0))
-      throw InputError(who + ": slope = " + num(p->slope) + " must be < -1 (finite N(>a))");
+      throw InputError(who + ": slope = " + format_number(p->slope) + " must be < -1 (finite N(>a))");
     if (!(p->reference_radius > 0.0)) throw InputError(who + ": reference size must be > 0");
     if (!(p->number_larger > 0.0)) throw InputError(who + ": number_larger must be > 0");
   } else if (const auto* b = std::get_if<BrokenPowerLaw>(&population.shape)) {
@@ -97,11 +92,13 @@ void validate(const ImpactorPopulation& population) {
     for (std::size_t i = 0; i < b->break_radii.size(); ++i) {
       if (!(b->break_radii[i] > 0.0) || (i > 0 && !(b->break_radii[i] > b->break_radii[i - 1]))) {
         throw InputError(who + ": break diameters must be positive and increasing (entry " +
-                         std::to_string(i + 1) + " = " + num(2.0 * b->break_radii[i] / 1000.0) + " km)");
+                         std::to_string(i + 1) + " = " + format_number(2.0 * b->break_radii[i] / 1000.0) +
+                         " km)");
       }
     }
     if (!(b->slopes.back() < -1.0)) {
-      throw InputError(who + ": the last slope = " + num(b->slopes.back()) + " must be < -1 (finite N(>a))");
+      throw InputError(who + ": the last slope = " + format_number(b->slopes.back()) +
+                       " must be < -1 (finite N(>a))");
     }
     if (!(b->reference_radius > 0.0) || !(b->number_larger > 0.0)) {
       throw InputError(who + ": reference size and number_larger must be > 0");
@@ -125,7 +122,7 @@ void validate(const ImpactorPopulation& population) {
 }
 
 double cumulative_number(const ImpactorPopulation& population, double a) {
-  if (!(a > 0.0)) throw InputError("impactor radius " + num(a) + " m must be > 0");
+  if (!(a > 0.0)) throw InputError("impactor radius " + format_number(a) + " m must be > 0");
   if (const auto* p = std::get_if<PowerLaw>(&population.shape)) {
     return p->number_larger * std::pow(a / p->reference_radius, p->slope + 1.0);
   }
@@ -139,7 +136,7 @@ double cumulative_number(const ImpactorPopulation& population, double a) {
 }
 
 double differential_number(const ImpactorPopulation& population, double a) {
-  if (!(a > 0.0)) throw InputError("impactor radius " + num(a) + " m must be > 0");
+  if (!(a > 0.0)) throw InputError("impactor radius " + format_number(a) + " m must be > 0");
   if (const auto* p = std::get_if<PowerLaw>(&population.shape)) {
     // -d/da [n_ref (a/a_ref)^(q+1)]
     return -(p->slope + 1.0) * p->number_larger * std::pow(a / p->reference_radius, p->slope + 1.0) / a;
@@ -166,7 +163,7 @@ double maximum_radius(const ImpactorPopulation& population) {
 }
 
 ImpactorPopulation normalised(const ImpactorPopulation& population, double a0, double n0) {
-  if (!(n0 > 0.0)) throw InputError("normalisation N(>a0) = " + num(n0) + " must be > 0");
+  if (!(n0 > 0.0)) throw InputError("normalisation N(>a0) = " + format_number(n0) + " must be > 0");
   const double factor = n0 / cumulative_number(population, a0);
   ImpactorPopulation out = population;
   if (auto* p = std::get_if<PowerLaw>(&out.shape)) {
@@ -181,7 +178,7 @@ ImpactorPopulation normalised(const ImpactorPopulation& population, double a0, d
 
 ImpactorPopulation power_law_population(double q, double reference_radius, double number_larger) {
   ImpactorPopulation p;
-  p.name = "power law q = " + num(q);
+  p.name = "power law q = " + format_number(q);
   p.citation = "single power law";
   p.shape = PowerLaw{q, reference_radius, number_larger};
   validate(p);

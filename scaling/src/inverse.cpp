@@ -12,18 +12,12 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_roots.h>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/point_source.hpp"
 
 namespace craterkit::scaling {
 namespace {
-
-std::string number(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
 
 // The range searched for the unknown, as ln(value / unit): 1e-30 .. 1e30 in SI units.
 constexpr double kLnMin = -69.0;
@@ -91,7 +85,7 @@ double solve_increasing(const std::function<double(double)>& f, double x0, const
 
 void check_crater_radius(double crater_radius) {
   if (!(crater_radius > 0.0) || !std::isfinite(crater_radius)) {
-    throw InputError("crater radius = " + number(crater_radius) +
+    throw InputError("crater radius = " + format_number(crater_radius) +
                      " is not allowed: must be a finite number > 0");
   }
 }

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <string>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/point_source.hpp"
 #include "point_source_formula.hpp"
@@ -11,23 +12,16 @@
 namespace craterkit::scaling {
 namespace {
 
-std::string number(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
-
 void require_positive(double value, const char* what) {
   if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string(what) + " = " + number(value) +
+    throw InputError(std::string(what) + " = " + format_number(value) +
                      " is not allowed: must be a finite number > 0");
   }
 }
 
 void require_non_negative(double value, const char* what) {
   if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string(what) + " = " + number(value) +
+    throw InputError(std::string(what) + " = " + format_number(value) +
                      " is not allowed: must be a finite number >= 0");
   }
 }
@@ -97,8 +91,8 @@ ScalingLaw convert(const ScalingLaw& law, Form to) {
 void validate(const ScalingLaw& law) {
   const auto check = [&](double value, const std::string& name, const char* allowed, bool ok) {
     if (!ok || !std::isfinite(value)) {
-      throw InputError("scaling constant " + name + " = " + number(value) + " is not allowed: must be " +
-                       allowed);
+      throw InputError("scaling constant " + name + " = " + format_number(value) +
+                       " is not allowed: must be " + allowed);
     }
   };
   check(law.coefficient_1, coefficient_name(law.form, 1), "a finite number > 0", law.coefficient_1 > 0.0);
@@ -120,8 +114,9 @@ double impactor_mass(const Impactor& impactor) {
 
 double pi_R(const ScalingLaw& law, const PiGroups& pi) {
   if (!(pi.pi2 >= 0.0) || !(pi.pi3 >= 0.0) || !(pi.pi2 > 0.0 || pi.pi3 > 0.0) || !(pi.pi4 > 0.0)) {
-    throw InputError("pi groups (pi2 = " + number(pi.pi2) + ", pi3 = " + number(pi.pi3) + ", pi4 = " +
-                     number(pi.pi4) + ") are not allowed: need pi2 >= 0, pi3 >= 0, not both 0, pi4 > 0");
+    throw InputError("pi groups (pi2 = " + format_number(pi.pi2) + ", pi3 = " + format_number(pi.pi3) +
+                     ", pi4 = " + format_number(pi.pi4) +
+                     ") are not allowed: need pi2 >= 0, pi3 >= 0, not both 0, pi4 > 0");
   }
   check_needed_constants(law, pi);
   const auto log_pi = log_pi_groups(pi);
@@ -144,7 +139,8 @@ double gravity_limit_radius(const ScalingLaw& law, const Impactor& impactor, con
   Target gravity_only = target;
   gravity_only.strength = 0.0;
   if (!(target.gravity > 0.0)) {
-    throw InputError("the gravity-regime limit needs gravity > 0 (got " + number(target.gravity) + ")");
+    throw InputError("the gravity-regime limit needs gravity > 0 (got " + format_number(target.gravity) +
+                     ")");
   }
   return crater_radius(law, impactor, gravity_only);
 }
@@ -153,7 +149,8 @@ double strength_limit_radius(const ScalingLaw& law, const Impactor& impactor, co
   Target strength_only = target;
   strength_only.gravity = 0.0;
   if (!(target.strength > 0.0)) {
-    throw InputError("the strength-regime limit needs strength > 0 (got " + number(target.strength) + ")");
+    throw InputError("the strength-regime limit needs strength > 0 (got " + format_number(target.strength) +
+                     ")");
   }
   return crater_radius(law, impactor, strength_only);
 }

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "craterkit/common/atomic_file.hpp"
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit::sph {
@@ -213,12 +214,6 @@ void require_non_negative(double value, const char* name) {
     throw InputError(std::string(name) + " = " + std::to_string(value) +
                      ": must be a finite number >= 0 (0 selects the default)");
   }
-}
-
-std::string format_number(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
 }
 
 template <class Kernel>

@@ -13,16 +13,10 @@
 
 #include <toml++/toml.h>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit::sph {
-
-inline std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
 
 class TomlKeys {
  public:
