@@ -38,12 +38,14 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
   w.density_rate.resize(count);
   w.energy_rate.resize(count);
   w.viscosity_alpha_rate.resize(count);
-  w.stress_rate_xx.resize(count);
-  w.stress_rate_xy.resize(count);
-  w.stress_rate_xz.resize(count);
-  w.stress_rate_yy.resize(count);
-  w.stress_rate_yz.resize(count);
-  w.total_strain_rate.resize(count);
+  const bool solid = p.solid_fields;
+  const std::size_t solid_count = solid ? count : 0;
+  w.stress_rate_xx.resize(solid_count);
+  w.stress_rate_xy.resize(solid_count);
+  w.stress_rate_xz.resize(solid_count);
+  w.stress_rate_yy.resize(solid_count);
+  w.stress_rate_yz.resize(solid_count);
+  w.total_strain_rate.resize(solid_count);
   const auto n = static_cast<std::int64_t>(count);
   const double half = 0.5 * dt;
 #pragma omp parallel for schedule(static)
@@ -56,12 +58,14 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
     w.density_rate[i] = p.density_rate[i];
     w.energy_rate[i] = p.energy_rate[i];
     w.viscosity_alpha_rate[i] = p.viscosity_alpha_rate[i];
-    w.stress_rate_xx[i] = p.stress_rate_xx[i];
-    w.stress_rate_xy[i] = p.stress_rate_xy[i];
-    w.stress_rate_xz[i] = p.stress_rate_xz[i];
-    w.stress_rate_yy[i] = p.stress_rate_yy[i];
-    w.stress_rate_yz[i] = p.stress_rate_yz[i];
-    w.total_strain_rate[i] = p.total_strain_rate[i];
+    if (solid) {
+      w.stress_rate_xx[i] = p.stress_rate_xx[i];
+      w.stress_rate_xy[i] = p.stress_rate_xy[i];
+      w.stress_rate_xz[i] = p.stress_rate_xz[i];
+      w.stress_rate_yy[i] = p.stress_rate_yy[i];
+      w.stress_rate_yz[i] = p.stress_rate_yz[i];
+      w.total_strain_rate[i] = p.total_strain_rate[i];
+    }
     if (!moves(p.flags[i])) continue;
     p.x[i] = wrap_position(box, 0, p.x[i] + dt * (p.vx[i] + half * ax));
     p.y[i] = wrap_position(box, 1, p.y[i] + dt * (p.vy[i] + half * ay));
@@ -73,12 +77,14 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
     p.density[i] += dt * p.density_rate[i];
     p.specific_energy[i] += dt * p.energy_rate[i];
     p.viscosity_alpha[i] += dt * p.viscosity_alpha_rate[i];
-    p.stress_xx[i] += dt * p.stress_rate_xx[i];
-    p.stress_xy[i] += dt * p.stress_rate_xy[i];
-    p.stress_xz[i] += dt * p.stress_rate_xz[i];
-    p.stress_yy[i] += dt * p.stress_rate_yy[i];
-    p.stress_yz[i] += dt * p.stress_rate_yz[i];
-    p.total_strain[i] += dt * p.total_strain_rate[i];
+    if (solid) {
+      p.stress_xx[i] += dt * p.stress_rate_xx[i];
+      p.stress_xy[i] += dt * p.stress_rate_xy[i];
+      p.stress_xz[i] += dt * p.stress_rate_xz[i];
+      p.stress_yy[i] += dt * p.stress_rate_yy[i];
+      p.stress_yz[i] += dt * p.stress_rate_yz[i];
+      p.total_strain[i] += dt * p.total_strain_rate[i];
+    }
     p.smoothing_length[i] = std::clamp(p.smoothing_length[i] * std::cbrt(density / p.density[i]),
                                        smoothing.min_smoothing_length, smoothing.max_smoothing_length);
   }
@@ -92,6 +98,7 @@ void correct(Particles& p, double dt, const IntegratorWorkspace& w,
   const double target = 4.0 / 3.0 * 3.14159265358979323846 * eta2 * eta2 * eta2;
   const double low = target * (1.0 - smoothing.neighbour_band),
                high = target * (1.0 + smoothing.neighbour_band);
+  const bool solid = p.solid_fields;
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -103,12 +110,14 @@ void correct(Particles& p, double dt, const IntegratorWorkspace& w,
     p.density[i] += half * (p.density_rate[i] - w.density_rate[i]);
     p.specific_energy[i] += half * (p.energy_rate[i] - w.energy_rate[i]);
     p.viscosity_alpha[i] += half * (p.viscosity_alpha_rate[i] - w.viscosity_alpha_rate[i]);
-    p.stress_xx[i] += half * (p.stress_rate_xx[i] - w.stress_rate_xx[i]);
-    p.stress_xy[i] += half * (p.stress_rate_xy[i] - w.stress_rate_xy[i]);
-    p.stress_xz[i] += half * (p.stress_rate_xz[i] - w.stress_rate_xz[i]);
-    p.stress_yy[i] += half * (p.stress_rate_yy[i] - w.stress_rate_yy[i]);
-    p.stress_yz[i] += half * (p.stress_rate_yz[i] - w.stress_rate_yz[i]);
-    p.total_strain[i] += half * (p.total_strain_rate[i] - w.total_strain_rate[i]);
+    if (solid) {
+      p.stress_xx[i] += half * (p.stress_rate_xx[i] - w.stress_rate_xx[i]);
+      p.stress_xy[i] += half * (p.stress_rate_xy[i] - w.stress_rate_xy[i]);
+      p.stress_xz[i] += half * (p.stress_rate_xz[i] - w.stress_rate_xz[i]);
+      p.stress_yy[i] += half * (p.stress_rate_yy[i] - w.stress_rate_yy[i]);
+      p.stress_yz[i] += half * (p.stress_rate_yz[i] - w.stress_rate_yz[i]);
+      p.total_strain[i] += half * (p.total_strain_rate[i] - w.total_strain_rate[i]);
+    }
     double factor = std::cbrt(density / p.density[i]);
     const double count = neighbour_count[i];
     if (count < low || count > high) {

@@ -13,6 +13,16 @@ void Particles::resize(std::size_t n) {
   }
 }
 
+void Particles::set_solid_fields(bool present) {
+  if (present == solid_fields) return;
+  solid_fields = present;
+  const std::size_t n = present ? size() : 0;
+  for_each_solid_field([n](std::string_view, auto& field) {
+    field.assign(n, 0.0);
+    field.shrink_to_fit();
+  });
+}
+
 void Particles::reserve(std::size_t n) {
   for_each_field([n](std::string_view, auto& field) { field.reserve(n); });
 }

@@ -74,6 +74,7 @@ void Simulation::configure() {
   rate_options_.solid = false;
   for (const auto& m : problem_.materials)
     rate_options_.solid = rate_options_.solid || m.strength.has_value();
+  problem_.particles.set_solid_fields(rate_options_.solid);
   problem_.particles.shrink_to_fit();
 }
 

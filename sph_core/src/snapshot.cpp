@@ -15,8 +15,8 @@ void write_snapshot(const std::filesystem::path& h5, const Particles& particles,
     detail::write_particle_file(tmp, particles, attributes, options);
   });
   // The sidecar refers to the snapshot by file name, so it is valid wherever the directory goes.
-  write_text_atomically(xdmf_sidecar_path(h5),
-                        snapshot_xdmf(h5.filename().string(), particles.size(), attributes.time));
+  write_text_atomically(xdmf_sidecar_path(h5), snapshot_xdmf(h5.filename().string(), particles.size(),
+                                                             attributes.time, particles.solid_fields));
 }
 
 Particles read_snapshot(const std::filesystem::path& h5, RunAttributes* attributes) {

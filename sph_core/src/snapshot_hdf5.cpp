@@ -302,6 +302,9 @@ Handle open_particle_file(const std::filesystem::path& path, AttributeScan& scan
   return file;
 }
 
+// A particle file holds the solid-mechanics group exactly when it holds this dataset.
+constexpr const char* solid_marker_field = "stress_xx";
+
 template <class T>
 void read_field(const std::filesystem::path& path, hid_t file, std::string_view field_name,
                 std::vector<T>& field, std::uint64_t count) {
@@ -411,7 +414,8 @@ ParticleFileHeader read_particle_file_header(const std::filesystem::path& path) 
   const SilenceHdf5Errors silence;
   AttributeScan scan;
   Handle file = open_particle_file(path, scan);
-  return {scan.texts["kind"], scan.numbers["time"], scan.integers["step"], scan.integers["particle_count"]};
+  return {scan.texts["kind"], scan.numbers["time"], scan.integers["step"], scan.integers["particle_count"],
+          H5Lexists(file.get(), solid_marker_field, H5P_DEFAULT) > 0};
 }
 
 Particles read_particle_file(const std::filesystem::path& path, RunAttributes* attributes) {
@@ -421,6 +425,7 @@ Particles read_particle_file(const std::filesystem::path& path, RunAttributes* a
   const std::uint64_t count = scan.integers["particle_count"];
 
   Particles particles;
+  particles.solid_fields = H5Lexists(file.get(), solid_marker_field, H5P_DEFAULT) > 0;
   particles.for_each_field(
       [&](std::string_view name, auto& field) { read_field(path, file.get(), name, field, count); });
 

@@ -37,6 +37,7 @@ struct ParticleFileHeader {
   double time = 0;
   std::uint64_t step = 0;
   std::uint64_t particle_count = 0;
+  bool solid_fields = false;  // holds the solid-mechanics group (Particles::solid_fields)
 };
 ParticleFileHeader read_particle_file_header(const std::filesystem::path& path);
 

@@ -73,7 +73,7 @@ void data_item(std::ostringstream& xml, const std::string& indent, const std::st
 
 // One Uniform grid: the particles of one snapshot.
 void uniform_grid(std::ostringstream& xml, const std::string& indent, const std::string& name,
-                  const std::string& h5_reference, std::size_t count, double time) {
+                  const std::string& h5_reference, std::size_t count, double time, bool solid_fields) {
   const std::string n = std::to_string(count);
   const std::string in1 = indent + "  ";
   const std::string in2 = indent + "    ";
@@ -90,7 +90,8 @@ void uniform_grid(std::ostringstream& xml, const std::string& indent, const std:
   xml << in1 << "<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n";
   data_item(xml, in2, n + " 3", {"Float", 8}, h5_reference, "velocity");
   xml << in1 << "</Attribute>\n";
-  const Particles layout;  // empty: only the field names and element types are needed
+  Particles layout;  // empty: only the field names and element types are needed
+  layout.solid_fields = solid_fields;
   layout.for_each_field([&](std::string_view field, const auto& values) {
     using T = typename std::decay_t<decltype(values)>::value_type;
     xml << in1 << "<Attribute Name=\"" << field << "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
@@ -100,15 +101,20 @@ void uniform_grid(std::ostringstream& xml, const std::string& indent, const std:
   xml << indent << "</Grid>\n";
 }
 
+SnapshotSummary summary_of(const std::filesystem::path& h5, const detail::ParticleFileHeader& header) {
+  return {h5, header.time, header.step, static_cast<std::size_t>(header.particle_count), header.solid_fields};
+}
+
 const char* xdmf_prologue =
     "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n";
 
 }  // namespace
 
-std::string snapshot_xdmf(const std::string& h5_reference, std::size_t particle_count, double time) {
+std::string snapshot_xdmf(const std::string& h5_reference, std::size_t particle_count, double time,
+                          bool solid_fields) {
   std::ostringstream xml;
   xml << xdmf_prologue << "  <Domain>\n";
-  uniform_grid(xml, "    ", "particles", h5_reference, particle_count, time);
+  uniform_grid(xml, "    ", "particles", h5_reference, particle_count, time, solid_fields);
   xml << "  </Domain>\n</Xdmf>\n";
   return xml.str();
 }
@@ -122,7 +128,7 @@ std::string time_series_xdmf(const std::vector<SnapshotSummary>& snapshots,
     const auto base = xdmf_directory.empty() ? std::filesystem::path(".") : xdmf_directory;
     const auto reference = std::filesystem::proximate(snapshot.h5, base);
     uniform_grid(xml, "      ", "step " + std::to_string(snapshot.step), reference.generic_string(),
-                 snapshot.particle_count, snapshot.time);
+                 snapshot.particle_count, snapshot.time, snapshot.solid_fields);
   }
   xml << "    </Grid>\n  </Domain>\n</Xdmf>\n";
   return xml.str();
@@ -133,7 +139,7 @@ SnapshotSummary summarize_snapshot(const std::filesystem::path& h5) {
   if (header.kind != detail::kind_snapshot) {
     throw InputError("cannot use " + h5.string() + " as a snapshot: its kind is '" + header.kind + "'");
   }
-  return {h5, header.time, header.step, static_cast<std::size_t>(header.particle_count)};
+  return summary_of(h5, header);
 }
 
 std::vector<SnapshotSummary> find_snapshots(const std::filesystem::path& dir) {
@@ -146,8 +152,7 @@ std::vector<SnapshotSummary> find_snapshots(const std::filesystem::path& dir) {
     try {
       auto header = detail::read_particle_file_header(path);
       if (header.kind == detail::kind_snapshot) {
-        snapshots.push_back(
-            {path, header.time, header.step, static_cast<std::size_t>(header.particle_count)});
+        snapshots.push_back(summary_of(path, header));
       }
     } catch (const InputError&) {
       // Not a craterkit particle file: not part of the series.

@@ -142,6 +142,31 @@ TEST(IoSnapshot, RoundTripsEveryFieldBitForBit) {
   EXPECT_EQ(directory_listing(dir.path()), (std::vector<std::string>{"snap.h5", "snap.xdmf"}));
 }
 
+// Fluid runs drop the solid-mechanics group (96 bytes per particle): it is neither written nor
+// expected on reading, and a file that holds it reads back with it.
+TEST(IoSnapshot, SolidGroupIsWrittenOnlyWhenPresent) {
+  ScratchDirectory dir("snapshot_fluid");
+  auto fluid = random_particles(100, 7);
+  fluid.set_solid_fields(false);
+  EXPECT_TRUE(fluid.stress_xx.empty());
+  EXPECT_EQ(fluid.stress_xx.capacity(), 0u);
+  sph::write_snapshot(dir / "fluid.h5", fluid, {});
+  const auto read = sph::read_snapshot(dir / "fluid.h5");
+  EXPECT_FALSE(read.solid_fields);
+  EXPECT_TRUE(read.stress_rate_yz.empty());
+  expect_bitwise_equal(fluid, read);
+
+  sph::write_checkpoint(dir / "solid.h5", random_particles(100, 8), {});
+  const auto solid = sph::read_checkpoint(dir / "solid.h5");
+  EXPECT_TRUE(solid.solid_fields);
+  EXPECT_EQ(solid.total_strain.size(), 100u);
+
+  // Re-allocating the group gives zeros for every particle.
+  fluid.set_solid_fields(true);
+  EXPECT_EQ(fluid.stress_yz.size(), 100u);
+  EXPECT_EQ(fluid.stress_yz[99], 0.0);
+}
+
 TEST(IoSnapshot, DatasetsCarryTheirUnits) {
   ScratchDirectory dir("snapshot_units");
   sph::write_snapshot(dir / "snap.h5", random_particles(10, 1), {});

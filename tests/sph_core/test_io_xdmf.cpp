@@ -234,14 +234,18 @@ void check_data_item(const Element& item, const fs::path& xml_dir, const std::st
   H5Fclose(file);
 }
 
-std::vector<std::string> field_names() {
+std::vector<std::string> field_names(bool solid_fields) {
   std::vector<std::string> names;
-  sph::Particles{}.for_each_field([&](std::string_view name, const auto&) { names.emplace_back(name); });
+  sph::Particles layout;
+  layout.solid_fields = solid_fields;
+  layout.for_each_field([&](std::string_view name, const auto&) { names.emplace_back(name); });
   return names;
 }
 
 // Checks a Uniform particle grid; returns its time.
-double check_particle_grid(const Element& grid, const fs::path& xml_dir, std::size_t n) {
+// solid_fields: whether the snapshot holds the solid-mechanics group (Particles::solid_fields).
+double check_particle_grid(const Element& grid, const fs::path& xml_dir, std::size_t n,
+                           bool solid_fields = true) {
   EXPECT_EQ(grid.attribute("GridType"), "Uniform");
   const std::string count = std::to_string(n);
   const Element& topology = grid.one("Topology");
@@ -264,7 +268,7 @@ double check_particle_grid(const Element& grid, const fs::path& xml_dir, std::si
   }
   EXPECT_EQ(attributes["velocity"]->attribute("AttributeType"), "Vector");
   check_data_item(attributes["velocity"]->one("DataItem"), xml_dir, "velocity", count + " 3");
-  const auto names = field_names();
+  const auto names = field_names(solid_fields);
   EXPECT_EQ(attributes.size(), names.size() + 1);  // every field + the velocity vector
   for (const auto& name : names) {
     if (attributes.count(name) == 0) {
@@ -321,6 +325,20 @@ TEST(IoXdmf, SnapshotSidecarDescribesEveryDataset) {
   for (std::size_t i = 0; i < connectivity.size(); ++i) EXPECT_EQ(connectivity[i], static_cast<long long>(i));
   // The reference is the bare file name, so the directory can be moved.
   EXPECT_EQ(trim(grid.one("Geometry").one("DataItem").text), "snap_000007.h5:/position");
+}
+
+// A fluid run drops the solid-mechanics group: its sidecar must not point at datasets that are not there.
+TEST(IoXdmf, FluidSnapshotSidecarListsOnlyTheFieldsItHolds) {
+  ScratchDirectory dir("xdmf_fluid");
+  auto particles = lattice(40);
+  particles.set_solid_fields(false);
+  sph::write_snapshot(dir / "snap_000001.h5", particles, {});
+  const auto xml = parse_file(dir / "snap_000001.xdmf");
+  check_particle_grid(xml->one("Domain").one("Grid"), dir.path(), 40, /*solid_fields=*/false);
+  EXPECT_EQ(xml->one("Domain").one("Grid").all("Attribute").size(), field_names(true).size() + 1 - 12);
+  sph::write_time_series_xdmf(dir / "run.xdmf", sph::find_snapshots(dir.path()));
+  const auto series = parse_file(dir / "run.xdmf");
+  check_particle_grid(*series->one("Domain").one("Grid").all("Grid").at(0), dir.path(), 40, false);
 }
 
 TEST(IoXdmf, FileNamesAreEscaped) {

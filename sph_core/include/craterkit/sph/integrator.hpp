@@ -6,7 +6,7 @@
 //   predict:  v^{n+1/2} = v^n + dt/2 a^n,  x^{n+1} = x^n + dt v^{n+1/2},
 //             state used for the new rates: v* = v^n + dt a^n, rho* = rho^n + dt drho^n,
 //             u* = u^n + dt du^n, alpha* = alpha^n + dt dalpha^n, S* = S^n + dt dS^n,
-//             eps* = eps^n + dt deps^n (deviatoric stress and total strain; zero for fluids)
+//             eps* = eps^n + dt deps^n (deviatoric stress and total strain; solid group only)
 //   (rates r^{n+1} evaluated at x^{n+1} and the predicted state)
 //   correct:  q^{n+1} = q* + dt/2 (r^{n+1} - r^n)   for q = v, rho, u, alpha, S, eps
 //             (= q^n + dt/2 (r^n + r^{n+1}): trapezoidal, second order)
@@ -37,7 +37,8 @@ struct SmoothingLengthParameters {
   double neighbour_band = 0.25;  // relative deviation of the neighbour count tolerated without steering
 };
 
-// The rates of step n, kept between predict() and correct().
+// The rates of step n, kept between predict() and correct() (the solid-mechanics rates only when
+// the particles hold the solid group).
 struct IntegratorWorkspace {
   std::vector<double> acceleration_x, acceleration_y, acceleration_z, density_rate, energy_rate,
       viscosity_alpha_rate, stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz,

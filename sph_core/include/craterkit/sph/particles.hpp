@@ -1,8 +1,10 @@
 #pragma once
 // Particle storage: structure-of-arrays, one contiguous std::vector per field, owned by Particles.
 // Phases take the arrays they need (spans), so what each phase reads and writes is visible in its
-// signature. Fields for solid mechanics and porosity are always present (zero / one when unused)
-// so that materials slot in without changing the layout.
+// signature. Distention is always present (one when non-porous). The solid-mechanics group
+// (deviatoric stress, accumulated strain and their rates: 12 doubles, 96 bytes per particle) is
+// present only while `solid_fields` is true; a run whose materials have no strength drops it
+// (set_solid_fields(false)), and snapshots and checkpoints then simply do not hold it.
 //
 // Every field is registered in for_each_field(), which is the single list used by sorting along the
 // space-filling curve, by snapshots and by checkpoints: adding a field means adding one line there.
@@ -39,7 +41,8 @@ struct Particles {
   std::vector<double> pressure;          // bulk pressure P, Pa (derived each step by the EOS)
   std::vector<double> sound_speed;       // c, m/s (derived each step by the EOS)
 
-  // Solid mechanics: symmetric traceless deviatoric stress S (Pa); S_zz = -(S_xx + S_yy).
+  // Solid mechanics (only while solid_fields): symmetric traceless deviatoric stress S (Pa);
+  // S_zz = -(S_xx + S_yy).
   std::vector<double> stress_xx, stress_xy, stress_xz, stress_yy, stress_yz;
   std::vector<double> total_strain;  // accumulated total (deviatoric) strain, dimensionless
   std::vector<double> distention;    // P-alpha alpha = rho_matrix / rho >= 1 (1 when non-porous)
@@ -54,13 +57,18 @@ struct Particles {
   std::vector<double> density_rate;                                    // drho/dt, kg/m^3/s
   std::vector<double> energy_rate;                                     // du/dt, W/kg
   std::vector<double> viscosity_alpha_rate;                            // dalpha/dt, 1/s
-  // Solid mechanics (stress_rates.hpp; zero for fluids): the Jaumann rate dS/dt, Pa/s, and the rate
+  // Solid mechanics (stress_rates.hpp; only while solid_fields): the Jaumann rate dS/dt, Pa/s, and the rate
   // of the accumulated strain, 1/s.
   std::vector<double> stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz;
   std::vector<double> total_strain_rate;
 
+  // Whether the solid-mechanics group is allocated (and visited by for_each_field).
+  bool solid_fields = true;
+
   [[nodiscard]] std::size_t size() const { return x.size(); }
   void resize(std::size_t n);  // new entries: zeros, distention 1, flags active
+  // Allocates the solid-mechanics group (zeros) or releases it; no-op if already so.
+  void set_solid_fields(bool present);
   void reserve(std::size_t n);
   void shrink_to_fit();  // releases the growth slack of every field (set-ups build by push_back)
 
@@ -85,12 +93,6 @@ struct Particles {
     visit(std::string_view{"smoothing_length"}, smoothing_length);
     visit(std::string_view{"pressure"}, pressure);
     visit(std::string_view{"sound_speed"}, sound_speed);
-    visit(std::string_view{"stress_xx"}, stress_xx);
-    visit(std::string_view{"stress_xy"}, stress_xy);
-    visit(std::string_view{"stress_xz"}, stress_xz);
-    visit(std::string_view{"stress_yy"}, stress_yy);
-    visit(std::string_view{"stress_yz"}, stress_yz);
-    visit(std::string_view{"total_strain"}, total_strain);
     visit(std::string_view{"distention"}, distention);
     visit(std::string_view{"viscosity_alpha"}, viscosity_alpha);
     visit(std::string_view{"acceleration_x"}, acceleration_x);
@@ -99,6 +101,17 @@ struct Particles {
     visit(std::string_view{"density_rate"}, density_rate);
     visit(std::string_view{"energy_rate"}, energy_rate);
     visit(std::string_view{"viscosity_alpha_rate"}, viscosity_alpha_rate);
+    if (solid_fields) for_each_solid_field(visit);
+  }
+  // The solid-mechanics group alone (visited whether or not it is allocated).
+  template <class Visitor>
+  void for_each_solid_field(Visitor&& visit) {
+    visit(std::string_view{"stress_xx"}, stress_xx);
+    visit(std::string_view{"stress_xy"}, stress_xy);
+    visit(std::string_view{"stress_xz"}, stress_xz);
+    visit(std::string_view{"stress_yy"}, stress_yy);
+    visit(std::string_view{"stress_yz"}, stress_yz);
+    visit(std::string_view{"total_strain"}, total_strain);
     visit(std::string_view{"stress_rate_xx"}, stress_rate_xx);
     visit(std::string_view{"stress_rate_xy"}, stress_rate_xy);
     visit(std::string_view{"stress_rate_xz"}, stress_rate_xz);

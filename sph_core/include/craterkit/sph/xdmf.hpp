@@ -19,10 +19,12 @@ struct SnapshotSummary {
   double time = 0;           // s
   std::uint64_t step = 0;
   std::size_t particle_count = 0;
+  bool solid_fields = false;  // holds the solid-mechanics group (Particles::solid_fields)
 };
 
 // The XDMF document for one snapshot; h5_reference is the file name written into the XML.
-std::string snapshot_xdmf(const std::string& h5_reference, std::size_t particle_count, double time);
+std::string snapshot_xdmf(const std::string& h5_reference, std::size_t particle_count, double time,
+                          bool solid_fields);
 
 // A temporal collection over several snapshots (in the given order), for a whole run.
 // Each snapshot is referenced relative to the directory of the XML file.
