@@ -121,11 +121,18 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     double max_mu = 0.0;   // max_j |mu_ij| over approaching pairs
     std::uint64_t count = 0;
 
-    // Solid-only accumulators (dead code, removed by the compiler, for fluids).
-    const double inv_rho2i = inv_rhoi * inv_rhoi;
-    const double sixx = sxx[i] * inv_rho2i, sixy = sxy[i] * inv_rho2i, sixz = sxz[i] * inv_rho2i;
-    const double siyy = syy[i] * inv_rho2i, siyz = syz[i] * inv_rho2i;
-    const double sizz = -(sxx[i] + syy[i]) * inv_rho2i;
+    // Solid-only state and accumulators (dead code, removed by the compiler, for fluids; the stress
+    // arrays are not even allocated then, so they are read only under `solid`).
+    double sixx = 0.0, sixy = 0.0, sixz = 0.0, siyy = 0.0, siyz = 0.0, sizz = 0.0;  // S_i / rho_i^2
+    if constexpr (solid) {
+      const double inv_rho2i = inv_rhoi * inv_rhoi;
+      sixx = sxx[i] * inv_rho2i;
+      sixy = sxy[i] * inv_rho2i;
+      sixz = sxz[i] * inv_rho2i;
+      siyy = syy[i] * inv_rho2i;
+      siyz = syz[i] * inv_rho2i;
+      sizz = -(sxx[i] + syy[i]) * inv_rho2i;
+    }
     double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (v_j - v_i) (x) grad W
     double M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (x_j - x_i) (x) grad W
     double U[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum m_j (v_j - v_i) (x) grad W (uncorrected, x rho_i)
