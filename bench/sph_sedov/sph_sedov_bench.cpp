@@ -3,8 +3,10 @@
 // second, every phase of a step included), neighbours per particle, bytes per particle, per-phase
 // timings and the thread efficiency speedup / threads.
 //
-//   sph_sedov_bench [n_per_side ...] [--steps S] [--threads T1,T2] [--skin S]
+//   sph_sedov_bench [n_per_side ...] [--steps S] [--threads T1,T2] [--skin S] [--continuity]
 //   e.g. sph_sedov_bench 46 100 --steps 20     (about 1e5 and 1e6 particles)
+// Density by kernel summation as in the example; --continuity times the continuity-equation engine that
+// the impact runs use (no density pass).
 #include <omp.h>
 
 #include <chrono>
@@ -27,7 +29,8 @@ struct Measurement {
   std::string phases;
 };
 
-Measurement measure(int per_side, int threads, int steps, const NeighbourSearchOptions& search) {
+Measurement measure(int per_side, int threads, int steps, const NeighbourSearchOptions& search,
+                    DensityMethod density) {
   omp_set_num_threads(threads);
   SimulationConfig config;
   SedovSetup setup;
@@ -37,6 +40,7 @@ Measurement measure(int per_side, int threads, int steps, const NeighbourSearchO
   config.run.end_time = 0.05;
   config.smoothing.max_smoothing_length = 0.1;
   config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.density = density;
   config.neighbours.search = search;
   Simulation sim(config, build_problem(config));
   for (int k = 0; k < 2; ++k) sim.step(config.run.end_time);  // warm-up (first allocations)
@@ -65,12 +69,15 @@ int main(int argc, char** argv) {
   int steps = 20;
   std::vector<int> thread_counts = {1, 2};
   NeighbourSearchOptions search;
+  DensityMethod density = DensityMethod::summation;
   for (int k = 1; k < argc; ++k) {
     const std::string arg = argv[k];
     if (arg == "--steps" && k + 1 < argc) {
       steps = std::atoi(argv[++k]);
     } else if (arg == "--skin" && k + 1 < argc) {
       search.skin = std::atof(argv[++k]);
+    } else if (arg == "--continuity") {
+      density = DensityMethod::continuity;
     } else if (arg == "--threads" && k + 1 < argc) {
       thread_counts.clear();
       std::string list = argv[++k];
@@ -85,7 +92,9 @@ int main(int argc, char** argv) {
   }
   if (sides.empty()) sides = {46, 100};
   if (steps < 1 || thread_counts.empty()) {
-    std::fprintf(stderr, "usage: sph_sedov_bench [n_per_side ...] [--steps S] [--threads 1,2] [--skin S]\n");
+    std::fprintf(
+        stderr,
+        "usage: sph_sedov_bench [n_per_side ...] [--steps S] [--threads 1,2] [--skin S] [--continuity]\n");
     return 2;
   }
   std::printf(
@@ -94,7 +103,7 @@ int main(int argc, char** argv) {
   for (const int n : sides) {
     double single = 0.0;
     for (const int t : thread_counts) {
-      const auto m = measure(n, t, steps, search);
+      const auto m = measure(n, t, steps, search, density);
       if (t == thread_counts.front()) single = m.updates_per_second / t;
       std::printf("| %d | %d | %.3f | %.3g | %.1f | %.0f | %.0f %% | %s |\n", n * n * n, t,
                   m.seconds_per_step, m.updates_per_second, m.neighbours, m.bytes,

@@ -134,6 +134,8 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     c.smoothing.min_smoothing_length = s.number("min_smoothing_length", 0.0, 0.0, inf);
     c.smoothing.max_smoothing_length = s.number("max_smoothing_length", inf, 0.0, inf, true);
     c.smoothing.neighbour_band = s.number("neighbour_band", c.smoothing.neighbour_band, 0.0, 1.0, true);
+    const std::string density = s.text("density", "continuity", {"continuity", "summation"});
+    c.density = density == "summation" ? DensityMethod::summation : DensityMethod::continuity;
     if (c.smoothing.max_smoothing_length < c.smoothing.min_smoothing_length) {
       s.fail("max_smoothing_length", "must not be below kernel.min_smoothing_length");
     }

@@ -91,7 +91,8 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
 }
 
 void correct(Particles& p, double dt, const IntegratorWorkspace& w,
-             std::span<const std::uint32_t> neighbour_count, const SmoothingLengthParameters& smoothing) {
+             std::span<const std::uint32_t> neighbour_count, const SmoothingLengthParameters& smoothing,
+             bool integrate_density) {
   const auto n = static_cast<std::int64_t>(p.size());
   const double half = 0.5 * dt;
   const double eta2 = 2.0 * smoothing.eta;
@@ -107,7 +108,7 @@ void correct(Particles& p, double dt, const IntegratorWorkspace& w,
     p.vy[i] += half * (p.acceleration_y[i] - w.acceleration_y[i]);
     p.vz[i] += half * (p.acceleration_z[i] - w.acceleration_z[i]);
     const double density = p.density[i];
-    p.density[i] += half * (p.density_rate[i] - w.density_rate[i]);
+    if (integrate_density) p.density[i] += half * (p.density_rate[i] - w.density_rate[i]);
     p.specific_energy[i] += half * (p.energy_rate[i] - w.energy_rate[i]);
     p.viscosity_alpha[i] += half * (p.viscosity_alpha_rate[i] - w.viscosity_alpha_rate[i]);
     if (solid) {

@@ -129,6 +129,11 @@ void Simulation::evaluate_rates() {
       force_rebuild_ = false;
     }
   }
+  if (config_.density == DensityMethod::summation) {
+    auto scope = timers_.measure("density");
+    compute_summation_density(p, PairList{lists_.offsets, lists_.neighbours}, config_.kernel,
+                              rate_options_.period);
+  }
   update_equation_of_state();
   {
     auto scope = timers_.measure("rates");
@@ -162,7 +167,8 @@ void Simulation::step(double target_time) {
   evaluate_rates();
   {
     auto scope = timers_.measure("integration");
-    correct(p, dt, integrator_workspace_, rate_workspace_.neighbour_count, config_.smoothing);
+    correct(p, dt, integrator_workspace_, rate_workspace_.neighbour_count, config_.smoothing,
+            config_.density == DensityMethod::continuity);
   }
   update_equation_of_state();
   time_ = land ? target_time : time_ + dt;

@@ -46,6 +46,12 @@ TEST(SimulationConfig, DefaultsApply) {
   EXPECT_EQ(c.kernel, KernelType::cubic_spline);
 }
 
+TEST(SimulationConfig, DensityMethodIsChosenInTheKernelTable) {
+  EXPECT_EQ(parse_simulation_config(minimal, "t.toml").density, DensityMethod::continuity);
+  EXPECT_EQ(parse_simulation_config(minimal + "[kernel]\ndensity = \"summation\"\n", "t.toml").density,
+            DensityMethod::summation);
+}
+
 TEST(SimulationConfig, UnknownKeysAreNamed) {
   EXPECT_NE(error_of(minimal + "[viscosity]\nalpah = 1.0\n").find("viscosity.alpah"), std::string::npos);
   EXPECT_NE(error_of(minimal + "[bogus]\nx = 1\n").find("bogus"), std::string::npos);
@@ -59,6 +65,7 @@ TEST(SimulationConfig, OutOfRangeAndWrongTypesAreNamed) {
   EXPECT_NE(error_of(minimal + "[viscosity]\nswitch = \"magic\"\n").find("viscosity.switch"),
             std::string::npos);
   EXPECT_NE(error_of(minimal + "[kernel]\neta = \"big\"\n").find("kernel.eta"), std::string::npos);
+  EXPECT_NE(error_of(minimal + "[kernel]\ndensity = \"sph\"\n").find("kernel.density"), std::string::npos);
   EXPECT_NE(error_of("[problem]\nsetup = \"sod\"\n[run]\nend_time = -1\n").find("run.end_time"),
             std::string::npos);
   EXPECT_NE(error_of("[problem]\nsetup = \"sod\"\n").find("run.end_time"), std::string::npos);

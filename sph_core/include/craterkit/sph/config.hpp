@@ -7,7 +7,8 @@
 //   [sedov] / [sod] / [plates]   the set-up parameters (setups.hpp); only the chosen one may appear
 //   [run]        end_time (s), max_steps (0: no limit), gravity = [gx, gy, gz] (m/s^2)
 //   [kernel]     type = "cubic_spline" | "wendland_c2", eta, min_smoothing_length, max_smoothing_length,
-//                neighbour_band (integrator.hpp)
+//                neighbour_band (integrator.hpp), density = "continuity" | "summation"
+//                (summation_density.hpp: for gases only)
 //   [viscosity]  alpha, beta, switch = "none" | "morris_monaghan", alpha_min, decay_factor, epsilon
 //   [time_step]  courant, acceleration_factor, density_change, energy_change, energy_floor, max_step
 //   [neighbours] skin, sort_interval (steps between curve sorts)
@@ -23,6 +24,7 @@
 #include "craterkit/sph/neighbour_search.hpp"
 #include "craterkit/sph/rates.hpp"
 #include "craterkit/sph/setups.hpp"
+#include "craterkit/sph/summation_density.hpp"
 #include "craterkit/sph/time_step.hpp"
 
 namespace craterkit::sph {
@@ -52,6 +54,7 @@ struct SimulationConfig {
   SetupParameters setup = SedovSetup{};
   RunParameters run{};
   KernelType kernel = KernelType::cubic_spline;
+  DensityMethod density = DensityMethod::continuity;
   SmoothingLengthParameters smoothing{};
   ArtificialViscosity viscosity{};
   TimeStepParameters time_step{};

@@ -51,8 +51,11 @@ void predict(Particles& particles, double dt, const Box& box, IntegratorWorkspac
 
 // Trapezoidal correction with the rates evaluated after predict().
 // neighbour_count: pairs per particle from the rate pass after predict() (RateWorkspace).
+// integrate_density: false when the density was summed at the step's final positions
+// (summation_density.hpp; positions are final after predict()), which the correction must keep.
 void correct(Particles& particles, double dt, const IntegratorWorkspace& workspace,
-             std::span<const std::uint32_t> neighbour_count, const SmoothingLengthParameters& smoothing);
+             std::span<const std::uint32_t> neighbour_count, const SmoothingLengthParameters& smoothing,
+             bool integrate_density = true);
 
 // h = eta (m/rho)^(1/3), clamped, for every particle that is not fixed.
 void update_smoothing_length(Particles& particles, const SmoothingLengthParameters& smoothing);

@@ -1,0 +1,64 @@
+#include "craterkit/sph/summation_density.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace craterkit::sph {
+
+namespace {
+
+inline double minimum_image(double d, double period, double half) noexcept {
+  if (d > half) return d - period;
+  if (d < -half) return d + period;
+  return d;
+}
+
+template <class Kernel>
+void summation_impl(Particles& p, const PairList& pairs, const std::array<double, 3>& period) {
+  const auto n = static_cast<std::int64_t>(p.size());
+  const double* x = p.x.data();
+  const double* y = p.y.data();
+  const double* z = p.z.data();
+  const double* h = p.smoothing_length.data();
+  const double* mass = p.mass.data();
+  const std::uint8_t* flags = p.flags.data();
+  double* density = p.density.data();
+  const std::uint64_t* offsets = pairs.offsets.data();
+  const std::uint32_t* neighbours = pairs.neighbours.data();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double Lx = period[0], Ly = period[1], Lz = period[2];
+  const double hx = Lx > 0.0 ? 0.5 * Lx : inf, hy = Ly > 0.0 ? 0.5 * Ly : inf, hz = Lz > 0.0 ? 0.5 * Lz : inf;
+
+#pragma omp parallel for schedule(dynamic, 128)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if ((flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
+    const double xi = x[i], yi = y[i], zi = z[i], hi = h[i];
+    double sum = mass[i] * Kernel::value(0.0, hi);
+    for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+      const std::size_t j = neighbours[k];
+      const double dx = minimum_image(xi - x[j], Lx, hx);
+      const double dy = minimum_image(yi - y[j], Ly, hy);
+      const double dz = minimum_image(zi - z[j], Lz, hz);
+      const double hsum = hi + h[j];
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      if (r2 >= hsum * hsum) continue;  // beyond the pair support (lists may carry a skin)
+      sum += mass[j] * Kernel::value(std::sqrt(r2), 0.5 * hsum);
+    }
+    density[i] = sum;
+  }
+}
+
+}  // namespace
+
+void compute_summation_density(Particles& particles, const PairList& pairs, KernelType kernel,
+                               const std::array<double, 3>& period) {
+  with_kernel(kernel, [&](auto k) { summation_impl<decltype(k)>(particles, pairs, period); });
+}
+
+std::string_view density_method_name(DensityMethod method) noexcept {
+  return method == DensityMethod::summation ? "summation" : "continuity";
+}
+
+}  // namespace craterkit::sph
