@@ -214,7 +214,6 @@ double Simulation::bytes_per_particle() const {
     bytes += v->capacity() * sizeof(double);
   }
   for (const auto& v : gradients_.corrected) bytes += v.capacity() * sizeof(double);
-  for (const auto& v : gradients_.uncorrected) bytes += v.capacity() * sizeof(double);
   bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
   bytes += rate_workspace_.volume.capacity() * sizeof(double);
   bytes += order_.capacity() * sizeof(std::uint32_t);

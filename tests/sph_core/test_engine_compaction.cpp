@@ -26,6 +26,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
 #include <string_view>
 #include <type_traits>
 #include <unordered_map>
@@ -145,6 +148,15 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
   };
   double worst_curve_error = 0.0;
   int compared = 0;
+  // The path, for the validation figure (docs/scripts/plot_porosity.py): every 20 steps.
+  std::string trace = "phase,pressure_Pa,geometric_density,implied_distention,mean_distention,energy\n";
+  const auto record = [&](const char* phase, const ColumnState& s) {
+    char line[200];
+    std::snprintf(line, sizeof line, "%s,%.9g,%.9g,%.9g,%.9g,%.9g\n", phase, s.pressure, s.geometric_density,
+                  implied_distention(material.eos, s.geometric_density, s.specific_energy, s.pressure),
+                  s.distention, s.specific_energy);
+    trace += line;
+  };
   // Compresses until the middle reaches target_pressure; compares every 20 steps past P_e (by 2 %:
   // just above P_e the curve is steepest and the start-up of the middle from the elastic state is still
   // in progress).
@@ -154,6 +166,7 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
       sim.step(1.0);
       track();
       const ColumnState s = measure(p, initial_x, rho1);
+      if (step % 20 == 0) record("loading", s);
       if (step % 20 == 0 && s.pressure > compare_above) {
         const double implied =
             implied_distention(material.eos, s.geometric_density, s.specific_energy, s.pressure);
@@ -184,6 +197,7 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
     sim.step(1.0);
     track();
     unloaded = measure(p, initial_x, rho1);
+    record("unloading", unloaded);
   }
   ASSERT_LT(unloaded.pressure, 0.01 * peak.pressure);
   std::vector<double> alpha_unloaded(p.size());
@@ -196,11 +210,11 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
       "unloaded: P %.3g MPa, rho_g %.1f (peak %.1f), mean alpha %.5f (peak %.5f), largest decrease %.3g\n",
       unloaded.pressure * 1e-6, unloaded.geometric_density, peak.geometric_density, unloaded.distention,
       peak.distention, changed_on_unloading);
-  // Elastic unloading: the matrix springs back (a fraction of a per cent), the pores stay as they are. The
-  // first expansion step still completes the compaction of the last loading step (the trapezoidal
-  // alpha^{n+1} = alpha^n + dt/2 (r^n + r^{n+1}) carries r^n of the loading step): at most half a step of
-  // compaction, dt/2 |dalpha/dt| ~ 1e-4 at 5e-4 strain per step.
-  EXPECT_LT(changed_on_unloading, 2e-4);
+  // Elastic unloading: the matrix springs back (a fraction of a per cent), the pores stay as they are. Only
+  // the first expansion step may still compact, within the bound of limit_compaction (the crush curve at
+  // its end state; 7e-8 measured; without the bound the trapezoid's r^n of the last loading step compacted
+  // 1.9e-4 more).
+  EXPECT_LT(changed_on_unloading, 1e-6);
   EXPECT_GT(unloaded.geometric_density, 0.98 * peak.geometric_density);
 
   // Reloading: elastic (alpha unchanged) until the curve is met again near the previous peak, then
@@ -212,6 +226,7 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
     sim.step(1.0);
     track();
     reload = measure(p, initial_x, rho1);
+    record("reloading", reload);
     for (std::size_t k = 0; k < p.size(); ++k) {
       const double x0 = initial_x[p.id[k]];
       if (std::abs(x0) > 0.25 * column_planes * spacing) continue;
@@ -229,6 +244,9 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
   EXPECT_GT(compared, 20);
   EXPECT_LT(worst_curve_error, 0.02);
   EXPECT_EQ(worst_reexpansion, 0.0);  // no particle's alpha ever rose, by even one ulp
+  if (const char* out = std::getenv("CRATERKIT_VALIDATION_OUT")) {
+    std::ofstream(std::string(out) + "/compaction.csv") << trace;
+  }
 }
 
 // A porous solid whose state is compacting (two halves of a periodic column meeting at +-50 m/s:

@@ -13,6 +13,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
 
 #include "craterkit/sph/config.hpp"
 #include "craterkit/sph/simulation.hpp"
@@ -56,6 +59,21 @@ void check_porous_plates(double impact_velocity) {
   const double margin = 6.0 * setup.particle_spacing;
   double pressure = 0, velocity = 0, distention = 0, density = 0, count = 0;
   const auto& p = sim.particles();
+  if (const char* out = std::getenv("CRATERKIT_VALIDATION_OUT")) {
+    // One lattice column, for the validation figure (docs/scripts/plot_porosity.py).
+    std::ofstream csv(std::string(out) + "/porous_shock_" +
+                      std::to_string(static_cast<int>(impact_velocity)) + ".csv");
+    csv << "# hugoniot pressure_Pa " << reference.pressure << " particle_velocity " << u_p << " distention "
+        << reference.distention << " bulk_density " << reference.bulk_density << " shock_velocity "
+        << reference.shock_velocity << " time " << end_time << " margin " << margin << "\n";
+    csv << "material,x,pressure_Pa,distention,density,vx\n";
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.y[i] < setup.particle_spacing && p.z[i] < setup.particle_spacing) {
+        csv << p.material[i] << ',' << p.x[i] << ',' << p.pressure[i] << ',' << p.distention[i] << ','
+            << p.density[i] << ',' << p.vx[i] << '\n';
+      }
+    }
+  }
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.material[i] == 1 && p.x[i] > contact + margin && p.x[i] < front - margin) {
       pressure += p.pressure[i];
