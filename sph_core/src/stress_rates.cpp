@@ -104,8 +104,15 @@ void limit_compaction(Particles& p, std::span<const Material> materials,
     const Material& material = materials[p.material[i]];
     const double before = distention_before[i];
     if (!material.porosity || !(p.distention[i] < before)) continue;
-    const double lowest = return_to_crush_curve(material.eos, material.porosity->crush_curve, p.density[i],
-                                                p.specific_energy[i], before);
+    const PAlphaParameters& crush = material.porosity->crush_curve;
+    // Nothing to bound where the corrected state is on or above the curve (one EOS evaluation instead of
+    // the root finding).
+    const double alpha = p.distention[i];
+    const double pressure =
+        evaluate(material.eos, alpha * p.density[i], p.specific_energy[i]).pressure / alpha;
+    if (alpha >= crush_curve_distention(crush, pressure)) continue;
+    const double lowest =
+        return_to_crush_curve(material.eos, crush, p.density[i], p.specific_energy[i], before);
     p.distention[i] = std::max(p.distention[i], lowest);
   }
 }
