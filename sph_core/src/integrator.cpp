@@ -46,6 +46,8 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
   w.stress_rate_yy.resize(solid_count);
   w.stress_rate_yz.resize(solid_count);
   w.total_strain_rate.resize(solid_count);
+  w.distention_rate.resize(solid_count);
+  w.distention.resize(solid_count);
   const auto n = static_cast<std::int64_t>(count);
   const double half = 0.5 * dt;
 #pragma omp parallel for schedule(static)
@@ -65,6 +67,8 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
       w.stress_rate_yy[i] = p.stress_rate_yy[i];
       w.stress_rate_yz[i] = p.stress_rate_yz[i];
       w.total_strain_rate[i] = p.total_strain_rate[i];
+      w.distention_rate[i] = p.distention_rate[i];
+      w.distention[i] = p.distention[i];
     }
     if (!moves(p.flags[i])) continue;
     p.x[i] = wrap_position(box, 0, p.x[i] + dt * (p.vx[i] + half * ax));
@@ -84,6 +88,8 @@ void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
       p.stress_yy[i] += dt * p.stress_rate_yy[i];
       p.stress_yz[i] += dt * p.stress_rate_yz[i];
       p.total_strain[i] += dt * p.total_strain_rate[i];
+      // dalpha/dt <= 0 (compaction is irreversible); alpha >= 1 (no matrix denser than its law).
+      p.distention[i] = std::max(1.0, p.distention[i] + dt * p.distention_rate[i]);
     }
     p.smoothing_length[i] = std::clamp(p.smoothing_length[i] * std::cbrt(density / p.density[i]),
                                        smoothing.min_smoothing_length, smoothing.max_smoothing_length);
@@ -118,6 +124,12 @@ void correct(Particles& p, double dt, const IntegratorWorkspace& w,
       p.stress_yy[i] += half * (p.stress_rate_yy[i] - w.stress_rate_yy[i]);
       p.stress_yz[i] += half * (p.stress_rate_yz[i] - w.stress_rate_yz[i]);
       p.total_strain[i] += half * (p.total_strain_rate[i] - w.total_strain_rate[i]);
+      // alpha^{n+1} = alpha^n + dt/2 (r^n + r^{n+1}) <= alpha^n (both rates <= 0), from the stored alpha^n
+      // rather than from alpha*: the per-particle phase may have returned alpha* to the crush curve to
+      // evaluate the predicted pressure, and adding dt/2 (r^{n+1} - r^n) to a returned alpha* would count
+      // the step's compaction twice. The clamp makes "never re-expands" exact also after rounding.
+      p.distention[i] = std::clamp(w.distention[i] + half * (w.distention_rate[i] + p.distention_rate[i]),
+                                   1.0, w.distention[i]);
     }
     double factor = std::cbrt(density / p.density[i]);
     const double count = neighbour_count[i];

@@ -8,7 +8,6 @@ namespace craterkit::sph {
 
 void VelocityGradients::resize(std::size_t n) {
   for (auto& component : corrected) component.resize(n);
-  for (auto& component : uncorrected) component.resize(n);
 }
 
 std::string_view viscosity_switch_name(ViscositySwitch s) noexcept {
@@ -133,9 +132,13 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       siyz = syz[i] * inv_rho2i;
       sizz = -(sxx[i] + syy[i]) * inv_rho2i;
     }
+    // Why so few accumulators: with 9 + 9 + 9 (G, M and the uncorrected m_j-weighted gradient) the pair
+    // loop ran out of registers and spilled (perf: solid pair pass 2.4x the fluid one). M is symmetric
+    // (grad W is parallel to x_ij), and the work term needs only the scalar S_i : U, accumulated directly.
     double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (v_j - v_i) (x) grad W
-    double M[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (x_j - x_i) (x) grad W
-    double U[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum m_j (v_j - v_i) (x) grad W (uncorrected, x rho_i)
+    double M[6] = {0, 0, 0, 0, 0, 0};           // sum V_j (x_j - x_i) (x) grad W: xx, xy, xz, yy, yz, zz
+    double work =
+        0.0;  // S_i/rho_i^2 : sum m_j (v_j - v_i) (x) grad W  (= (1/rho_i) S_i : uncorrected grad v)
 
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
       const std::size_t j = neighbours[k];
@@ -177,27 +180,35 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       viscous += mj * pi_ij * v_dot_g;
 
       if constexpr (solid) {
-        // + m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad_i W_ij
-        const double txx = sixx + sxx[j] * inv_rho2j;
-        const double txy = sixy + sxy[j] * inv_rho2j;
-        const double txz = sixz + sxz[j] * inv_rho2j;
-        const double tyy = siyy + syy[j] * inv_rho2j;
-        const double tyz = siyz + syz[j] * inv_rho2j;
-        const double tzz = sizz - (sxx[j] + syy[j]) * inv_rho2j;
-        ax += mj * (txx * gx + txy * gy + txz * gz);
-        ay += mj * (txy * gx + tyy * gy + tyz * gz);
-        az += mj * (txz * gx + tyz * gy + tzz * gz);
-        const double vj = volume[j];
-        const double d[3] = {-dvx, -dvy, -dvz};  // v_j - v_i
-        const double e[3] = {-dx, -dy, -dz};     // x_j - x_i
-        const double g[3] = {gx, gy, gz};
-        for (int a = 0; a < 3; ++a) {
-          for (int b = 0; b < 3; ++b) {
-            G[3 * a + b] += vj * d[a] * g[b];
-            M[3 * a + b] += vj * e[a] * g[b];
-            U[3 * a + b] += mj * d[a] * g[b];
-          }
-        }
+        // + m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad_i W_ij; S_i/rho_i^2 . grad W serves the work term too.
+        const double sigx = sixx * gx + sixy * gy + sixz * gz;
+        const double sigy = sixy * gx + siyy * gy + siyz * gz;
+        const double sigz = sixz * gx + siyz * gy + sizz * gz;
+        const double jxx = sxx[j] * inv_rho2j, jxy = sxy[j] * inv_rho2j, jxz = sxz[j] * inv_rho2j;
+        const double jyy = syy[j] * inv_rho2j, jyz = syz[j] * inv_rho2j;
+        const double jzz = -(jxx + jyy);
+        ax += mj * (sigx + jxx * gx + jxy * gy + jxz * gz);
+        ay += mj * (sigy + jxy * gx + jyy * gy + jyz * gz);
+        az += mj * (sigz + jxz * gx + jyz * gy + jzz * gz);
+        // (v_j - v_i) = -dv, (x_j - x_i) = -d, grad W = g.
+        const double vgx = volume[j] * gx, vgy = volume[j] * gy, vgz = volume[j] * gz;
+        G[0] -= dvx * vgx;
+        G[1] -= dvx * vgy;
+        G[2] -= dvx * vgz;
+        G[3] -= dvy * vgx;
+        G[4] -= dvy * vgy;
+        G[5] -= dvy * vgz;
+        G[6] -= dvz * vgx;
+        G[7] -= dvz * vgy;
+        G[8] -= dvz * vgz;
+        M[0] -= dx * vgx;
+        M[1] -= dx * vgy;
+        M[2] -= dx * vgz;
+        M[3] -= dy * vgy;
+        M[4] -= dy * vgz;
+        M[5] -= dz * vgz;
+        // m_j (v_j - v_i) . (S_i/rho_i^2 grad W)
+        work -= mj * (dvx * sigx + dvy * sigy + dvz * sigz);
       }
     }
 
@@ -211,13 +222,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       // Work of the deviatoric stress with the uncorrected gradient G (energy-consistent with the
       // momentum equation), and the Randles & Libersky (1996) corrected gradient G . M^-1 for the
       // stress rate.
-      // U/rho_i is the uncorrected gradient; S_i/rho_i^2 : U = (1/rho_i) S_i : (U/rho_i).
-      du += sixx * U[0] + siyy * U[4] + sizz * U[8] + sixy * (U[1] + U[3]) + sixz * (U[2] + U[6]) +
-            siyz * (U[5] + U[7]);
+      du += work;
       if (gradients != nullptr) {
         double L[9];
         double corrected[9];
-        if (invert3(M, L)) {
+        const double full_M[9] = {M[0], M[1], M[2], M[1], M[3], M[4], M[2], M[4], M[5]};
+        if (invert3(full_M, L)) {
           for (int a = 0; a < 3; ++a) {
             for (int b = 0; b < 3; ++b) {
               corrected[3 * a + b] = G[3 * a] * L[b] + G[3 * a + 1] * L[3 + b] + G[3 * a + 2] * L[6 + b];
@@ -226,10 +236,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         } else {
           for (int k = 0; k < 9; ++k) corrected[k] = G[k];
         }
-        for (int k = 0; k < 9; ++k) {
-          gradients->corrected[k][i] = corrected[k];
-          gradients->uncorrected[k][i] = U[k] * inv_rhoi;
-        }
+        for (int k = 0; k < 9; ++k) gradients->corrected[k][i] = corrected[k];
       }
     }
     du_out[i] = du;

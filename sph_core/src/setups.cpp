@@ -128,8 +128,14 @@ ProblemSetup make_plate_impact(const PlateImpactSetup& s, double eta, double alp
   const double dx = s.particle_spacing;
   const double width = dx * s.cross_section_particles;
   const double h = eta * dx;
-  auto fill = [&](double x0, double thickness, double velocity, std::uint16_t id, double density) {
+  // A porous plate starts cold and unloaded at its initial distention: bulk density rho0 / alpha0.
+  auto distention_of = [](const Material& m) {
+    return m.porosity ? m.porosity->crush_curve.initial_distention : 1.0;
+  };
+  auto fill = [&](double x0, double thickness, double velocity, std::uint16_t id, double matrix_density) {
     const auto layers = static_cast<int>(std::lround(thickness / dx));
+    const double distention = distention_of(out.materials[id]);
+    const double density = matrix_density / distention;
     const double mass = density * dx * dx * dx;
     for (int i = 0; i < layers; ++i) {
       for (int j = 0; j < s.cross_section_particles; ++j) {
@@ -137,6 +143,7 @@ ProblemSetup make_plate_impact(const PlateImpactSetup& s, double eta, double alp
           add_particle(out.particles, x0 + (i + 0.5) * dx, (j + 0.5) * dx, (k + 0.5) * dx, mass, density, 0.0,
                        h, alpha, id);
           out.particles.vx.back() = velocity;
+          out.particles.distention.back() = distention;
         }
       }
     }

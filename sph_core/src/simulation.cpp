@@ -72,9 +72,12 @@ void Simulation::configure() {
   rate_options_.gravity = config_.run.gravity;
   rate_options_.period = periods(problem_.box);
   rate_options_.solid = false;
-  for (const auto& m : problem_.materials)
+  porous_ = false;
+  for (const auto& m : problem_.materials) {
     rate_options_.solid = rate_options_.solid || m.strength.has_value();
-  problem_.particles.set_solid_fields(rate_options_.solid);
+    porous_ = porous_ || m.porosity.has_value();
+  }
+  problem_.particles.set_solid_fields(rate_options_.solid || porous_);
   problem_.particles.shrink_to_fit();
 }
 
@@ -111,7 +114,7 @@ Simulation::Simulation(SimulationConfig config, ProblemSetup problem, Particles 
 
 void Simulation::update_equation_of_state() {
   auto scope = timers_.measure("equation_of_state");
-  if (rate_options_.solid) {
+  if (problem_.particles.solid_fields) {
     update_material_state(problem_.particles, problem_.materials, rate_workspace_, shear_modulus_);
   } else {
     update_pressure(problem_.particles, equations_of_state_, rate_workspace_);
@@ -140,6 +143,7 @@ void Simulation::evaluate_rates() {
     rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
                                   rate_workspace_, rate_options_.solid ? &gradients_ : nullptr);
     if (rate_options_.solid) compute_stress_rates(p, gradients_, shear_modulus_);
+    if (porous_) compute_distention_rates(p, problem_.materials);
   }
 }
 
@@ -169,6 +173,7 @@ void Simulation::step(double target_time) {
     auto scope = timers_.measure("integration");
     correct(p, dt, integrator_workspace_, rate_workspace_.neighbour_count, config_.smoothing,
             config_.density == DensityMethod::continuity);
+    if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention);
   }
   update_equation_of_state();
   time_ = land ? target_time : time_ + dt;
@@ -211,11 +216,10 @@ double Simulation::bytes_per_particle() const {
   for (const auto* v :
        {&w.acceleration_x, &w.acceleration_y, &w.acceleration_z, &w.density_rate, &w.energy_rate,
         &w.viscosity_alpha_rate, &w.stress_rate_xx, &w.stress_rate_xy, &w.stress_rate_xz, &w.stress_rate_yy,
-        &w.stress_rate_yz, &w.total_strain_rate, &shear_modulus_}) {
+        &w.stress_rate_yz, &w.total_strain_rate, &w.distention_rate, &w.distention, &shear_modulus_}) {
     bytes += v->capacity() * sizeof(double);
   }
   for (const auto& v : gradients_.corrected) bytes += v.capacity() * sizeof(double);
-  for (const auto& v : gradients_.uncorrected) bytes += v.capacity() * sizeof(double);
   bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
   bytes += rate_workspace_.volume.capacity() * sizeof(double);
   bytes += order_.capacity() * sizeof(std::uint32_t);

@@ -64,6 +64,7 @@ std::string field_unit(std::string_view field_name) {
       {"stress_rate_yy", "Pa/s"},
       {"stress_rate_yz", "Pa/s"},
       {"total_strain_rate", "1/s"},
+      {"distention_rate", "1/s"},
   };
   for (const auto& [name, unit] : units) {
     if (name == field_name) return std::string(unit);

@@ -7,6 +7,7 @@
 
 #include "craterkit/sph/deviatoric_stress.hpp"
 #include "craterkit/sph/material_response.hpp"
+#include "craterkit/sph/p_alpha.hpp"
 
 namespace craterkit::sph {
 
@@ -26,8 +27,25 @@ void update_material_state(Particles& p, std::span<const Material> materials, Ra
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double rho = p.density[i];
-    const MaterialState s = evaluate_material(materials[p.material[i]], rho, p.specific_energy[i],
-                                              p.distention[i], p.total_strain[i]);
+    const Material& material = materials[p.material[i]];
+    MaterialState s =
+        evaluate_material(material, rho, p.specific_energy[i], p.distention[i], p.total_strain[i]);
+    // Plastic compaction in algebraic form (material_response.hpp): a state left above the crush curve by
+    // the last update (a shock front, or the first step past P_e) is put back on it. Skipped within a
+    // relative 1e-9 of the curve: the return itself lands on it only to the tolerance of its root
+    // finder, and returning again would change the last bits, so that a run resumed from a checkpoint
+    // would not continue bitwise (as for the radial return below). Fixed particles do not evolve.
+    if (material.porosity && (p.flags[i] & particle_fixed) == 0) {
+      const PAlphaParameters& crush = material.porosity->crush_curve;
+      const double alpha = p.distention[i];
+      if (alpha > crush_curve_distention(crush, s.pressure) * (1.0 + 1e-9)) {
+        const double returned = return_to_crush_curve(material.eos, crush, rho, p.specific_energy[i], alpha);
+        if (returned < alpha) {
+          p.distention[i] = returned;
+          s = evaluate_material(material, rho, p.specific_energy[i], returned, p.total_strain[i]);
+        }
+      }
+    }
     p.pressure[i] = s.pressure;
     p.sound_speed[i] =
         std::sqrt(s.matrix_sound_speed * s.matrix_sound_speed + 4.0 / 3.0 * s.shear_modulus / rho);
@@ -74,6 +92,52 @@ void compute_stress_rates(Particles& p, const VelocityGradients& gradients,
     p.stress_rate_yy[i] = rate.yy;
     p.stress_rate_yz[i] = rate.yz;
     p.total_strain_rate[i] = deviatoric_strain_rate_invariant(L);
+  }
+}
+
+void limit_compaction(Particles& p, std::span<const Material> materials,
+                      std::span<const double> distention_before) {
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const Material& material = materials[p.material[i]];
+    const double before = distention_before[i];
+    if (!material.porosity || !(p.distention[i] < before)) continue;
+    const PAlphaParameters& crush = material.porosity->crush_curve;
+    // Nothing to bound where the corrected state is on or above the curve (one EOS evaluation instead of
+    // the root finding).
+    const double alpha = p.distention[i];
+    const double pressure =
+        evaluate(material.eos, alpha * p.density[i], p.specific_energy[i]).pressure / alpha;
+    if (alpha >= crush_curve_distention(crush, pressure)) continue;
+    const double lowest =
+        return_to_crush_curve(material.eos, crush, p.density[i], p.specific_energy[i], before);
+    p.distention[i] = std::max(p.distention[i], lowest);
+  }
+}
+
+void compute_distention_rates(Particles& p, std::span<const Material> materials) {
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const Material& material = materials[p.material[i]];
+    double rate = 0.0;
+    if (material.porosity && (p.flags[i] & (particle_fixed | particle_ejected)) == 0) {
+      const PAlphaParameters& crush = material.porosity->crush_curve;
+      const double pressure = p.pressure[i];
+      // Compaction only on the crush curve between P_e and P_s (distention_rate() tests the rest): the
+      // matrix derivatives are evaluated only there, i.e. in the few particles that are compacting.
+      if (pressure > crush.elastic_pressure && pressure < crush.solid_pressure) {
+        const double alpha = p.distention[i];
+        const double rho = p.density[i];
+        const EosState m = evaluate(material.eos, alpha * rho, p.specific_energy[i]);
+        rate = distention_rate(crush, alpha, pressure, rho, p.density_rate[i], p.energy_rate[i],
+                               MatrixResponse{m.dpressure_ddensity, m.dpressure_denergy});
+      }
+    }
+    p.distention_rate[i] = rate;
   }
 }
 

@@ -6,10 +6,13 @@
 //   predict:  v^{n+1/2} = v^n + dt/2 a^n,  x^{n+1} = x^n + dt v^{n+1/2},
 //             state used for the new rates: v* = v^n + dt a^n, rho* = rho^n + dt drho^n,
 //             u* = u^n + dt du^n, alpha* = alpha^n + dt dalpha^n, S* = S^n + dt dS^n,
-//             eps* = eps^n + dt deps^n (deviatoric stress and total strain; solid group only)
+//             eps* = eps^n + dt deps^n, alpha_d* = alpha_d^n + dt dalpha_d^n (deviatoric stress,
+//             total strain and P-alpha distention alpha_d; solid group only)
 //   (rates r^{n+1} evaluated at x^{n+1} and the predicted state)
-//   correct:  q^{n+1} = q* + dt/2 (r^{n+1} - r^n)   for q = v, rho, u, alpha, S, eps
-//             (= q^n + dt/2 (r^n + r^{n+1}): trapezoidal, second order)
+//   correct:  q^{n+1} = q* + dt/2 (r^{n+1} - r^n)   for q = v, rho, u, alpha, S, eps, alpha_d
+//             (= q^n + dt/2 (r^n + r^{n+1}): trapezoidal, second order; the distention alpha_d is
+//             corrected in this second form from the stored alpha_d^n, since alpha_d* may have been
+//             returned to the crush curve, stress_rates.hpp)
 //
 // Fixed and ejected particles are not advanced. The smoothing length follows the density,
 // h ~ (m / rho)^(1/3) (physics.md section 1: dh/dt = -(h/3) (drho/dt)/rho, applied as the ratio of
@@ -42,7 +45,8 @@ struct SmoothingLengthParameters {
 struct IntegratorWorkspace {
   std::vector<double> acceleration_x, acceleration_y, acceleration_z, density_rate, energy_rate,
       viscosity_alpha_rate, stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz,
-      total_strain_rate;
+      total_strain_rate, distention_rate;
+  std::vector<double> distention;  // alpha_d^n (solid group only): the corrected alpha_d never exceeds it
 };
 
 // Kick, drift (positions wrapped into the box on periodic axes) and predicted state.

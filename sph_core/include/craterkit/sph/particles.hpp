@@ -2,9 +2,12 @@
 // Particle storage: structure-of-arrays, one contiguous std::vector per field, owned by Particles.
 // Phases take the arrays they need (spans), so what each phase reads and writes is visible in its
 // signature. Distention is always present (one when non-porous). The solid-mechanics group
-// (deviatoric stress, accumulated strain and their rates: 12 doubles, 96 bytes per particle) is
-// present only while `solid_fields` is true; a run whose materials have no strength drops it
-// (set_solid_fields(false)), and snapshots and checkpoints then simply do not hold it.
+// (deviatoric stress, accumulated strain and their rates, and the distention rate: 13 doubles,
+// 104 bytes per particle) is present only while `solid_fields` is true; a run whose materials have
+// neither strength nor porosity drops it (set_solid_fields(false)), and snapshots and checkpoints
+// then simply do not hold it. The distention rate belongs to this group rather than to the core so
+// that fluid runs (Sedov, Sod) carry nothing of the material models; a porous material without
+// strength therefore carries the (zero) stress fields too, a cost paid only in that rare case.
 //
 // Every field is registered in for_each_field(), which is the single list used by sorting along the
 // space-filling curve, by snapshots and by checkpoints: adding a field means adding one line there.
@@ -57,12 +60,15 @@ struct Particles {
   std::vector<double> density_rate;                                    // drho/dt, kg/m^3/s
   std::vector<double> energy_rate;                                     // du/dt, W/kg
   std::vector<double> viscosity_alpha_rate;                            // dalpha/dt, 1/s
-  // Solid mechanics (stress_rates.hpp; only while solid_fields): the Jaumann rate dS/dt, Pa/s, and the rate
-  // of the accumulated strain, 1/s.
+  // Solid mechanics (stress_rates.hpp; only while solid_fields): the Jaumann rate dS/dt, Pa/s, and the
+  // rate of the accumulated strain, 1/s.
   std::vector<double> stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz;
   std::vector<double> total_strain_rate;
+  // P-alpha (only while solid_fields): dalpha/dt of the consistent rate of Jutzi et al. (2008), 1/s
+  // (stress_rates.hpp, compute_distention_rates); zero for non-porous particles.
+  std::vector<double> distention_rate;
 
-  // Whether the solid-mechanics group is allocated (and visited by for_each_field).
+  // Whether the solid-mechanics group (strength and porosity) is allocated (and visited by for_each_field).
   bool solid_fields = true;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
@@ -118,6 +124,7 @@ struct Particles {
     visit(std::string_view{"stress_rate_yy"}, stress_rate_yy);
     visit(std::string_view{"stress_rate_yz"}, stress_rate_yz);
     visit(std::string_view{"total_strain_rate"}, total_strain_rate);
+    visit(std::string_view{"distention_rate"}, distention_rate);
   }
   template <class Visitor>
   void for_each_field(Visitor&& visit) const {

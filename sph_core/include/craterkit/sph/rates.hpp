@@ -78,12 +78,12 @@ struct PairList {
   std::span<const std::uint32_t> neighbours;
 };
 
-// Corrected velocity gradient (grad v)_ab = dv_a/dx_b per particle, row-major (xx, xy, xz, yx, ...),
-// and the uncorrected one used for the S:eps_dot work term (energy-consistent with the momentum
-// equation, physics.md section 1). Filled only when RateOptions::solid is set.
+// Corrected velocity gradient (grad v)_ab = dv_a/dx_b per particle, row-major (xx, xy, xz, yx, ...), for
+// the stress rate. (The uncorrected one enters only the S:eps_dot work term of the energy equation, which
+// the pair pass adds itself, energy-consistent with the momentum equation, physics.md section 1.)
+// Filled only when RateOptions::solid is set.
 struct VelocityGradients {
   std::array<std::vector<double>, 9> corrected;
-  std::array<std::vector<double>, 9> uncorrected;
   void resize(std::size_t n);
 };
 

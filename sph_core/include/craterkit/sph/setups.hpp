@@ -43,7 +43,8 @@ struct SodSetup {
 // Planar impact of two plates along x: the projectile plate x in [-projectile_thickness, 0) moves at
 // +impact_velocity into the target plate x in [0, target_thickness) at rest; y and z periodic with
 // width cross_section, so the flow is one-dimensional (uniaxial strain). Both at their reference
-// density and zero specific energy (zero pressure). Hydrodynamic (no strength, issue 5).
+// density and zero specific energy (zero pressure); a porous plate at its initial distention alpha0 and
+// bulk density rho0/alpha0 (cold and unloaded). The materials' strength and porosity are as loaded.
 struct PlateImpactSetup {
   std::string projectile_material = "aluminium";
   std::string target_material = "basalt";

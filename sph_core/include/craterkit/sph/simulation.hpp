@@ -10,7 +10,9 @@
 //
 // Solid mechanics is on when any material has a [strength] block: the equation-of-state phase then
 // evaluates the full material (floor, longitudinal signal speed, shear modulus, radial return) and the
-// stress rates follow the pair pass (stress_rates.hpp). Fluid-only runs take the fluid path unchanged.
+// stress rates follow the pair pass (stress_rates.hpp). With a [porosity] material (with or without
+// strength) the same per-particle phase evaluates the porous pressure and returns states to the crush
+// curve, and the distention rate follows the pair pass. Fluid-only runs take the fluid path unchanged.
 //
 // run_simulation() adds the outputs around the steps: HDF5 snapshots at the requested times (with
 // XDMF), a checkpoint (atomically replaced) every N steps or wall seconds and at the end, the
@@ -100,6 +102,7 @@ class Simulation {
   std::uint64_t step_ = 0;
   std::uint64_t rebuilds_ = 0;
   bool force_rebuild_ = true;
+  bool porous_ = false;  // a material has [porosity]: the distention evolves (P-alpha)
 };
 
 struct RunOptions {
