@@ -167,11 +167,17 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     t.acceleration_factor = s.number("acceleration_factor", t.acceleration_factor, 0.0, 1.0, true);
     t.density_change = s.number("density_change", t.density_change, 0.0, 1.0, true);
     t.energy_change = s.number("energy_change", t.energy_change, 0.0, 1.0);
-    t.energy_floor = s.number("energy_floor", t.energy_floor, 0.0, inf);
+    // Impacts default to the energy limit with u_floor = U^2/400 (1e4 J/kg at 2 km/s): without it the
+    // light stand-in projectile's specific energy can change sign within one step (docs/impact_setup.md).
+    const auto* impact_setup_parameters = std::get_if<ImpactSetup>(&c.setup);
+    const double impact_floor =
+        impact_setup_parameters != nullptr
+            ? impact_setup_parameters->impact_speed * impact_setup_parameters->impact_speed / 400.0
+            : t.energy_floor;
+    t.energy_floor = s.number("energy_floor", impact_floor, 0.0, inf);
     t.max_step = s.number("max_step", t.max_step, 0.0, inf, true);
     // Impacts default to the velocity-change limit (time_step.hpp: the light stand-in projectile).
-    const bool impact_setup = std::holds_alternative<ImpactSetup>(c.setup);
-    t.velocity_change = s.number("velocity_change", impact_setup ? 0.1 : 0.0, 0.0, 1.0);
+    t.velocity_change = s.number("velocity_change", impact_setup_parameters != nullptr ? 0.1 : 0.0, 0.0, 1.0);
     s.finish();
   }
   {

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -128,6 +129,23 @@ void Simulation::switch_to_late_stage() {
   late_stage_active_ = true;
 }
 
+void Simulation::keep_pressure_across_switch() {
+  auto& p = problem_.particles;
+  const auto n = static_cast<std::int64_t>(p.size());
+  constexpr double max_strain = late_stage_max_reference_strain;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const auto* law = std::get_if<LowSoundSpeed>(&problem_.materials[p.material[i]].eos);
+    if (law == nullptr) continue;
+    // Matrix pressure P_m = alpha P (P-alpha, physics.md section 2) from the new law
+    // P_m = A_low (rho_m / rho_m0 - 1): rho_m = rho_m0 (1 + alpha P / A_low), capped.
+    const double alpha = p.distention[i];
+    const double strain = std::clamp(alpha * p.pressure[i] / law->A, -max_strain, max_strain);
+    p.density[i] = law->reference_density * (1.0 + strain) / alpha;
+  }
+}
+
 void Simulation::eject() {
   auto& p = problem_.particles;
   if (eject_particles(p, problem_.ejection_radius, time_, step_, new_ejecta_) == 0) return;
@@ -250,6 +268,7 @@ void Simulation::step(double target_time) {
   };
   if (plan.planned() && !late_stage_active_ && time_ >= plan.transition_time) {
     switch_to_late_stage();
+    keep_pressure_across_switch();
     // The integrator reuses the rates of this evaluation in the next step: they must be the switched
     // medium's (evaluate_rates() evaluates the equation of state first).
     evaluate_rates();
@@ -351,6 +370,9 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
     measurement.kernel = config.kernel;
     measurement.quarter_symmetric = scenario.impact->symmetry == DomainSymmetry::quarter;
     measurement.boulders = impact_boulder_specs(scenario.problem.particles, *scenario.impact);
+    // Rays end at the inner face of the fixed shell (the default, from the particles' extent and the
+    // largest h, is thrown off by isolated particles with large h above the target).
+    measurement.max_radius = scenario.impact->domain_radius - scenario.impact->fixed_shell_thickness;
   }
   ProblemSetup problem = std::move(scenario.problem);
   std::unique_ptr<Simulation> sim;

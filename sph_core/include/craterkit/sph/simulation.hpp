@@ -16,6 +16,12 @@
 // that would pass t_transition is shortened to end on it; after that step every material switches to the
 // low-sound-speed law, the equation of state and the rates are evaluated again with the new laws (so the
 // integrator's stored rates belong to the switched medium), and the time step follows the new sound speeds.
+// The switch keeps each particle's pressure: its density is re-referenced so that the new law returns
+// the pressure it had, rho = rho_m0 (1 + alpha P / A_low) / alpha, with the matrix strain alpha P / A_low
+// capped at +-late_stage_max_reference_strain (beyond it the pressure drops to the cap's). Without this a
+// target at rest would suddenly carry its lithostatic load with a medium A/A_low times softer and sag
+// (docs/validation.md, "Lithostatic rest"); the density of continuity-SPH is a state variable, so
+// this moves no particle and changes no mass or energy.
 // The switch is logged on stderr with the largest Mach number |v|/c just after it; the largest Mach
 // number over the late stage is tracked every step. Both go into the attributes of later snapshots and
 // checkpoints (record_late_stage(), plus "late_stage_max_mach"), and a run resumed from a checkpoint
@@ -52,6 +58,8 @@
 #include "craterkit/sph/time_step.hpp"
 
 namespace craterkit::sph {
+
+constexpr double late_stage_max_reference_strain = 0.1;
 
 // The set-up named by the configuration (problem.setup), with what the run needs besides the
 // particles: the impact summary (impact set-ups only), the late-stage plan (impact: from the summary,
@@ -117,6 +125,7 @@ class Simulation {
   void update_equation_of_state();
   void switch_to_late_stage();  // the materials and the fluid laws (no logging, no rate evaluation)
   void eject();                 // flags, records and moves ejecta behind the active particles
+  void keep_pressure_across_switch();
 
   SimulationConfig config_;
   ProblemSetup problem_;
