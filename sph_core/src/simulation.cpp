@@ -13,6 +13,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/checkpoint.hpp"
 #include "craterkit/sph/crater_growth.hpp"
+#include "craterkit/sph/deviatoric_stress.hpp"
 #include "craterkit/sph/progress.hpp"
 #include "craterkit/sph/rates_pressure.hpp"
 #include "craterkit/sph/space_filling_curve.hpp"
@@ -146,6 +147,27 @@ void Simulation::keep_pressure_across_switch() {
   }
 }
 
+void Simulation::cap_elastic_shear_strain() {
+  auto& p = problem_.particles;
+  const auto n = static_cast<std::int64_t>(p.size());
+  constexpr double max_strain = late_stage_max_reference_strain;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    // Elastic shear strain sqrt(J2) / (2 G) at most max_strain: S <- S min(1, 2 G max_strain / sqrt(J2)).
+    const double J2 = second_invariant(
+        DeviatoricStress{p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i], p.stress_yz[i]});
+    const double limit = 2.0 * shear_modulus_[i] * max_strain;
+    if (!(J2 > limit * limit)) continue;
+    const double f = limit / std::sqrt(J2);
+    p.stress_xx[i] *= f;
+    p.stress_xy[i] *= f;
+    p.stress_xz[i] *= f;
+    p.stress_yy[i] *= f;
+    p.stress_yz[i] *= f;
+  }
+}
+
 void Simulation::eject() {
   auto& p = problem_.particles;
   if (eject_particles(p, problem_.ejection_radius, time_, step_, new_ejecta_) == 0) return;
@@ -269,6 +291,10 @@ void Simulation::step(double target_time) {
   if (plan.planned() && !late_stage_active_ && time_ >= plan.transition_time) {
     switch_to_late_stage();
     keep_pressure_across_switch();
+    if (rate_options_.solid) {
+      update_equation_of_state();  // the switched shear moduli per particle
+      cap_elastic_shear_strain();
+    }
     // The integrator reuses the rates of this evaluation in the next step: they must be the switched
     // medium's (evaluate_rates() evaluates the equation of state first).
     evaluate_rates();
@@ -277,7 +303,11 @@ void Simulation::step(double target_time) {
   } else if (late_stage_active_) {
     late_stage_max_mach_ = std::max(late_stage_max_mach_, mach());
   }
-  limits_ = sph::time_step_limits(p, rate_summary_, config_.time_step);
+  // After the switch the matrix law is energy-free: the specific energy no longer feeds back into the
+  // pressure, and its relative-change limit (meant to resolve Tillotson's energy dependence) is dropped.
+  TimeStepParameters parameters = config_.time_step;
+  if (late_stage_active_) parameters.energy_change = 0.0;
+  limits_ = sph::time_step_limits(p, rate_summary_, parameters);
   dt_next_ = limits_.step(config_.time_step.max_step);
   if (!(dt_next_ > 0.0) || !std::isfinite(dt_next_)) {
     throw std::runtime_error("time step collapsed to " + std::to_string(dt_next_) +
