@@ -213,3 +213,55 @@ TEST(CraterGrowth, EndsOnlyWhenRadiusAndKineticEnergyHaveSettledOverTheWindow) {
       {1, 1, std::nan(""), 0}, {2, 2, std::nan(""), 0}, {3, 3, std::nan(""), 0}};
   EXPECT_FALSE(crater_growth_ended(none, c));
 }
+
+TEST(Ejecta, EngineTakesEjectaOutOfTheHydrodynamics) {
+  // A 6^3 lattice of basalt at rest (no gravity) and one particle of it placed above the plane beyond the
+  // ejection radius, moving away: after one step it is flagged, recorded, behind the others, and no
+  // longer anybody's neighbour; the mass of the set is unchanged.
+  ProblemSetup problem;
+  problem.materials.push_back(load_material("basalt"));
+  Particles& p = problem.particles;
+  const double dx = 0.1;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) {
+        const std::size_t n = p.size();
+        p.resize(n + 1);
+        p.id[n] = n;
+        p.x[n] = (i + 0.5) * dx;
+        p.y[n] = (j + 0.5) * dx;
+        p.z[n] = -(k + 0.5) * dx;
+        p.density[n] = 2700.0;
+        p.mass[n] = 2700.0 * dx * dx * dx;
+        p.smoothing_length[n] = 1.2 * dx;
+        p.viscosity_alpha[n] = 1.0;
+        p.sound_speed[n] = 3000.0;
+      }
+  // Particle 0 sits next to the block, above the plane, beyond R_ej = 0.7 m, moving outwards.
+  p.x[0] = 0.6;
+  p.y[0] = 0.6;
+  p.z[0] = 0.05;
+  p.vx[0] = 5.0;
+  problem.ejection_radius = 0.7;
+  SimulationConfig config;
+  config.run.end_time = 1.0;
+  Simulation sim(config, std::move(problem));
+  const double mass = sim.conserved().mass;
+  sim.step(1.0);
+  const auto records = sim.take_new_ejecta();
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].id, 0u);
+  EXPECT_EQ(sim.active_particles(), 215u);
+  const auto& q = sim.particles();
+  EXPECT_EQ(q.id.back(), 0u);
+  EXPECT_NE(q.flags.back() & particle_ejected, 0);
+  const double x = q.x.back(), vx = q.vx.back();
+  EXPECT_EQ(sim.conserved().mass, mass);
+  sim.step(1.0);
+  // Frozen at launch, out of the pair loops (no rates) and of the neighbour lists (the others' neighbour
+  // count is that of the block alone).
+  EXPECT_EQ(q.x.back(), x);
+  EXPECT_EQ(q.vx.back(), vx);
+  EXPECT_EQ(q.acceleration_x.back(), 0.0);
+  EXPECT_TRUE(sim.take_new_ejecta().empty());
+}
