@@ -2,6 +2,7 @@
 // checkpoints, the conserved-quantities log and a summary (text, or JSON with --json).
 #include <omp.h>
 
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -26,28 +27,50 @@ struct SimulateOptions {
   bool quiet = false;
 };
 
+// NaN (no crater found) as null.
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
+
 nlohmann::json summary_json(const sph::SimulationSummary& s) {
   nlohmann::json phases = nlohmann::json::object();
   for (const auto& [name, seconds] : s.phase_seconds) phases[name] = seconds;
-  return {{"name", s.name},
-          {"setup", s.setup},
-          {"particles", s.particles},
-          {"steps", s.steps},
-          {"steps_this_run", s.steps_this_run},
-          {"time", s.time},
-          {"wall_seconds", s.wall_seconds},
-          {"particle_updates_per_second", s.particle_updates_per_second},
-          {"mean_neighbours", s.mean_neighbours},
-          {"relative_energy_error", s.relative_energy_error},
-          {"relative_momentum_error", s.relative_momentum_error},
-          {"bytes_per_particle", s.bytes_per_particle},
-          {"threads", s.threads},
-          {"resumed", s.resumed},
-          {"neighbour_rebuilds", s.neighbour_rebuilds},
-          {"phase_seconds", phases},
-          {"snapshots", s.snapshots},
-          {"checkpoint", s.checkpoint},
-          {"conservation_log", s.conservation_log}};
+  nlohmann::json out = {{"name", s.name},
+                        {"setup", s.setup},
+                        {"particles", s.particles},
+                        {"steps", s.steps},
+                        {"steps_this_run", s.steps_this_run},
+                        {"time", s.time},
+                        {"wall_seconds", s.wall_seconds},
+                        {"particle_updates_per_second", s.particle_updates_per_second},
+                        {"mean_neighbours", s.mean_neighbours},
+                        {"relative_energy_error", s.relative_energy_error},
+                        {"relative_momentum_error", s.relative_momentum_error},
+                        {"bytes_per_particle", s.bytes_per_particle},
+                        {"threads", s.threads},
+                        {"resumed", s.resumed},
+                        {"neighbour_rebuilds", s.neighbour_rebuilds},
+                        {"phase_seconds", phases},
+                        {"snapshots", s.snapshots},
+                        {"checkpoint", s.checkpoint},
+                        {"conservation_log", s.conservation_log}};
+  if (s.transition_time > 0.0) {
+    out["late_stage"] = {{"switched", s.late_stage},
+                         {"transition_time", s.transition_time},
+                         {"max_mach_at_transition", s.mach_at_transition},
+                         {"max_mach_late_stage", s.late_stage_max_mach}};
+  }
+  if (s.crater) {
+    out["crater_radius"] = number_or_null(s.crater->crater_radius);
+    out["crater_radius_uncertainty"] = number_or_null(s.crater->crater_radius_uncertainty);
+    out["crater_depth"] = number_or_null(s.crater->depth);
+    out["crater_growth_ended"] = s.crater_growth_ended;
+    out["crater_json"] = s.crater_json;
+    out["ejected_particles"] = s.ejected_particles;
+    out["ejected_mass"] = s.ejected_mass;
+    out["ejecta_log"] = s.ejecta_log;
+  }
+  return out;
 }
 
 void run_simulate(const SimulateOptions& options) {
@@ -73,6 +96,16 @@ void run_simulate(const SimulateOptions& options) {
              summary.particle_updates_per_second, summary.mean_neighbours, summary.bytes_per_particle);
   fmt::print("  relative energy error {:.3e}, relative momentum error {:.3e}\n",
              summary.relative_energy_error, summary.relative_momentum_error);
+  if (summary.crater) {
+    fmt::print("  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m{}; ejected {} particles ({:.4g} kg)\n",
+               summary.crater->crater_radius, summary.crater->crater_radius_uncertainty,
+               summary.crater->depth, summary.crater_growth_ended ? " (crater growth ended)" : "",
+               summary.ejected_particles, summary.ejected_mass);
+  }
+  if (summary.late_stage) {
+    fmt::print("  late stage from t = {:.6g} s: largest Mach number {:.4g} at the switch, {:.4g} after\n",
+               summary.transition_time, summary.mach_at_transition, summary.late_stage_max_mach);
+  }
   if (!summary.checkpoint.empty())
     fmt::print("  output in {} (checkpoint {})\n", options.out, summary.checkpoint);
   fmt::print("{}", summary.phase_table);

@@ -2,17 +2,22 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <span>
 #include <stdexcept>
 
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/checkpoint.hpp"
+#include "craterkit/sph/crater_growth.hpp"
+#include "craterkit/sph/deviatoric_stress.hpp"
 #include "craterkit/sph/progress.hpp"
 #include "craterkit/sph/rates_pressure.hpp"
 #include "craterkit/sph/space_filling_curve.hpp"
+#include "craterkit/sph/step_csv_log.hpp"
 #include "craterkit/sph/xdmf.hpp"
 
 namespace craterkit::sph {
@@ -57,12 +62,44 @@ double number_attribute(const RunAttributes& a, const std::string& key, const st
 
 }  // namespace
 
-ProblemSetup build_problem(const SimulationConfig& config) {
+Scenario build_scenario(const SimulationConfig& config) {
   const double alpha = config.viscosity.alpha;
   const double eta = config.smoothing.eta;
-  if (const auto* s = std::get_if<SedovSetup>(&config.setup)) return make_sedov(*s, eta, alpha);
-  if (const auto* s = std::get_if<SodSetup>(&config.setup)) return make_sod(*s, eta, alpha);
-  return make_plate_impact(std::get<PlateImpactSetup>(config.setup), eta, alpha);
+  Scenario out;
+  if (const auto* s = std::get_if<ImpactSetup>(&config.setup)) {
+    ImpactScenario impact = make_impact(*s, eta, alpha, config.run.gravity);
+    const ImpactSummary& summary = impact.summary;
+    out.problem = std::move(impact.problem);
+    auto& plan = out.problem.late_stage;
+    plan.transition_time = summary.transition_time;
+    plan.A_low.assign(out.problem.materials.size(), summary.low_sound_speed_modulus);
+    // The density-scaled stand-in (material 1) keeps the sound speed of the material it stands for only
+    // if its A_low is scaled by the same k as its other stress-like parameters (docs/impact_setup.md).
+    plan.A_low[1] *= summary.model_density_scale;
+    out.problem.ejection_radius = summary.domain_radius;
+    out.problem.attributes = impact_run_attributes(summary, config.kernel);
+    out.problem.attributes.numbers["A_low_projectile"] = plan.A_low[1];
+    out.impact = summary;
+    return out;
+  }
+  if (const auto* sedov = std::get_if<SedovSetup>(&config.setup)) {
+    out.problem = make_sedov(*sedov, eta, alpha);
+  } else if (const auto* sod = std::get_if<SodSetup>(&config.setup)) {
+    out.problem = make_sod(*sod, eta, alpha);
+  } else {
+    out.problem = make_plate_impact(std::get<PlateImpactSetup>(config.setup), eta, alpha);
+  }
+  if (config.late_stage.transition_time > 0.0) {
+    out.problem.late_stage.transition_time = config.late_stage.transition_time;
+    out.problem.late_stage.A_low.assign(out.problem.materials.size(), config.late_stage.A_low);
+    // Fails early (naming the material) for a law without a bulk modulus, e.g. an ideal gas.
+    for (const auto& m : out.problem.materials) (void)late_stage_material(m, config.late_stage.A_low);
+  }
+  return out;
+}
+
+ProblemSetup build_problem(const SimulationConfig& config) {
+  return build_scenario(config).problem;
 }
 
 void Simulation::configure() {
@@ -79,6 +116,67 @@ void Simulation::configure() {
   }
   problem_.particles.set_solid_fields(rate_options_.solid || porous_);
   problem_.particles.shrink_to_fit();
+  // Ejected particles (e.g. from a checkpoint) stay behind the active ones.
+  order_ = ejected_last_order(problem_.particles, &active_);
+  if (active_ < problem_.particles.size()) problem_.particles.permute(order_);
+}
+
+void Simulation::switch_to_late_stage() {
+  const auto& plan = problem_.late_stage;
+  std::vector<Material> switched;
+  for (std::size_t id = 0; id < problem_.materials.size(); ++id) {
+    switched.push_back(late_stage_material(problem_.materials[id], plan.A_low[id]));
+  }
+  problem_.materials = std::move(switched);
+  equations_of_state_.clear();
+  for (const auto& m : problem_.materials) equations_of_state_.push_back(m.eos);
+  late_stage_active_ = true;
+}
+
+void Simulation::keep_pressure_across_switch() {
+  auto& p = problem_.particles;
+  const auto n = static_cast<std::int64_t>(p.size());
+  constexpr double max_strain = late_stage_max_reference_strain;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const auto* law = std::get_if<LowSoundSpeed>(&problem_.materials[p.material[i]].eos);
+    if (law == nullptr) continue;
+    // Matrix pressure P_m = alpha P (P-alpha, physics.md section 2) from the new law
+    // P_m = A_low (rho_m / rho_m0 - 1): rho_m = rho_m0 (1 + alpha P / A_low), capped.
+    const double alpha = p.distention[i];
+    const double strain = std::clamp(alpha * p.pressure[i] / law->A, -max_strain, max_strain);
+    p.density[i] = law->reference_density * (1.0 + strain) / alpha;
+  }
+}
+
+void Simulation::cap_elastic_shear_strain() {
+  auto& p = problem_.particles;
+  const auto n = static_cast<std::int64_t>(p.size());
+  constexpr double max_strain = late_stage_max_reference_strain;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    // Elastic shear strain sqrt(J2) / (2 G) at most max_strain: S <- S min(1, 2 G max_strain / sqrt(J2)).
+    const double J2 = second_invariant(
+        DeviatoricStress{p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i], p.stress_yz[i]});
+    const double limit = 2.0 * shear_modulus_[i] * max_strain;
+    if (!(J2 > limit * limit)) continue;
+    const double f = limit / std::sqrt(J2);
+    p.stress_xx[i] *= f;
+    p.stress_xy[i] *= f;
+    p.stress_xz[i] *= f;
+    p.stress_yy[i] *= f;
+    p.stress_yz[i] *= f;
+  }
+}
+
+void Simulation::eject() {
+  auto& p = problem_.particles;
+  if (eject_particles(p, problem_.ejection_radius, time_, step_, new_ejecta_) == 0) return;
+  order_ = ejected_last_order(p, &active_);
+  p.permute(order_);
+  force_rebuild_ = true;
 }
 
 Simulation::Simulation(SimulationConfig config, ProblemSetup problem)
@@ -104,6 +202,14 @@ Simulation::Simulation(SimulationConfig config, ProblemSetup problem, Particles 
   time_ = attributes.time;
   step_ = attributes.step;
   dt_next_ = number_attribute(attributes, "next_time_step", "checkpoint");
+  if (attributes.numbers.count("late_stage_transition_time") != 0) {
+    if (!problem_.late_stage.planned()) {
+      throw InputError("checkpoint: written after a late-stage switch, but the configuration plans none");
+    }
+    switch_to_late_stage();
+    mach_at_transition_ = number_attribute(attributes, "late_stage_max_mach_at_transition", "checkpoint");
+    late_stage_max_mach_ = number_attribute(attributes, "late_stage_max_mach", "checkpoint");
+  }
   auto fields = initial_fields(initial_);
   for (std::size_t k = 0; k < fields.size(); ++k)
     *fields[k] = number_attribute(attributes, initial_keys[k], "checkpoint");
@@ -125,7 +231,11 @@ void Simulation::evaluate_rates() {
   auto& p = problem_.particles;
   {
     auto scope = timers_.measure("neighbours");
-    const auto input = neighbour_input(p);
+    // Only the active particles (ejecta are behind them) enter the search and hence the pair loops.
+    const NeighbourInput input{std::span<const double>(p.x).first(active_),
+                               std::span<const double>(p.y).first(active_),
+                               std::span<const double>(p.z).first(active_),
+                               std::span<const double>(p.smoothing_length).first(active_)};
     if (force_rebuild_ || search_.needs_rebuild(input)) {
       search_.build(input, problem_.box, lists_);
       ++rebuilds_;
@@ -149,6 +259,10 @@ void Simulation::evaluate_rates() {
 
 void Simulation::step(double target_time) {
   auto& p = problem_.particles;
+  const auto& plan = problem_.late_stage;
+  if (plan.planned() && !late_stage_active_ && plan.transition_time > time_) {
+    target_time = std::min(target_time, plan.transition_time);
+  }
   double dt = dt_next_;
   bool land = false;
   if (time_ + dt * (1.0 + 1e-9) >= target_time) {
@@ -160,7 +274,9 @@ void Simulation::step(double target_time) {
   const auto sort_interval = config_.neighbours.sort_interval;
   if (sort_interval > 0 && step_ % sort_interval == 0) {
     auto scope = timers_.measure("sort");
-    curve_order(p.x, p.y, p.z, order_);
+    curve_order(std::span<const double>(p.x).first(active_), std::span<const double>(p.y).first(active_),
+                std::span<const double>(p.z).first(active_), order_);
+    for (std::size_t k = active_; k < p.size(); ++k) order_.push_back(static_cast<std::uint32_t>(k));
     p.permute(order_);
     force_rebuild_ = true;
   }
@@ -178,14 +294,39 @@ void Simulation::step(double target_time) {
   update_equation_of_state();
   time_ = land ? target_time : time_ + dt;
   ++step_;
-  limits_ = sph::time_step_limits(p, rate_summary_, config_.time_step);
+  eject();
+  const auto mach = [&] {
+    auto scope = timers_.measure("diagnostics");
+    return max_mach_number(p.vx, p.vy, p.vz, p.sound_speed, p.flags).value;
+  };
+  if (plan.planned() && !late_stage_active_ && time_ >= plan.transition_time) {
+    switch_to_late_stage();
+    keep_pressure_across_switch();
+    if (rate_options_.solid) {
+      update_equation_of_state();  // the switched shear moduli per particle
+      cap_elastic_shear_strain();
+    }
+    // The integrator reuses the rates of this evaluation in the next step: they must be the switched
+    // medium's (evaluate_rates() evaluates the equation of state first).
+    evaluate_rates();
+    mach_at_transition_ = mach();
+    late_stage_max_mach_ = mach_at_transition_;
+  } else if (late_stage_active_) {
+    late_stage_max_mach_ = std::max(late_stage_max_mach_, mach());
+  }
+  // After the switch the matrix law is energy-free: the specific energy no longer feeds back into the
+  // pressure, and its relative-change limit (meant to resolve Tillotson's energy dependence) is dropped.
+  TimeStepParameters parameters = config_.time_step;
+  if (late_stage_active_) parameters.energy_change = 0.0;
+  limits_ = sph::time_step_limits(p, rate_summary_, parameters);
   dt_next_ = limits_.step(config_.time_step.max_step);
   if (!(dt_next_ > 0.0) || !std::isfinite(dt_next_)) {
-    throw std::runtime_error(
-        "time step collapsed to " + std::to_string(dt_next_) + " s at t = " + std::to_string(time_) +
-        " s, step " + std::to_string(step_) + " (limits: courant " + std::to_string(limits_.courant) +
-        ", acceleration " + std::to_string(limits_.acceleration) + ", density " +
-        std::to_string(limits_.density) + ", energy " + std::to_string(limits_.energy) + ")");
+    throw std::runtime_error("time step collapsed to " + std::to_string(dt_next_) +
+                             " s at t = " + std::to_string(time_) + " s, step " + std::to_string(step_) +
+                             " (limits: courant " + std::to_string(limits_.courant) + ", acceleration " +
+                             std::to_string(limits_.acceleration) + ", density " +
+                             std::to_string(limits_.density) + ", energy " + std::to_string(limits_.energy) +
+                             ", velocity " + std::to_string(limits_.velocity) + ")");
   }
 }
 
@@ -236,6 +377,13 @@ RunAttributes Simulation::attributes() const {
   for (std::size_t k = 0; k < fields.size(); ++k) a.numbers[initial_keys[k]] = *fields[k];
   a.texts["problem_name"] = config_.name;
   a.texts["setup"] = setup_name(config_.setup);
+  for (const auto& [key, value] : problem_.attributes.numbers) a.numbers[key] = value;
+  for (const auto& [key, value] : problem_.attributes.texts) a.texts[key] = value;
+  if (late_stage_active_) {
+    record_late_stage(
+        a, {problem_.late_stage.transition_time, problem_.late_stage.A_low[0], mach_at_transition_});
+    a.numbers["late_stage_max_mach"] = late_stage_max_mach_;
+  }
   return a;
 }
 
@@ -252,7 +400,21 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   summary.setup = setup_name(config.setup);
   summary.threads = omp_get_max_threads();
 
-  ProblemSetup problem = build_problem(config);
+  Scenario scenario = build_scenario(config);
+  if (options.log && scenario.impact) std::fprintf(stderr, "%s", describe_impact(*scenario.impact).c_str());
+  // The crater measurement's settings (boulders are found in the initial particle set).
+  CraterMeasurementOptions measurement;
+  if (scenario.impact) {
+    measurement.rho_initial = scenario.impact->initial_bulk_density;
+    measurement.particle_spacing = scenario.impact->particle_spacing;
+    measurement.kernel = config.kernel;
+    measurement.quarter_symmetric = scenario.impact->symmetry == DomainSymmetry::quarter;
+    measurement.boulders = impact_boulder_specs(scenario.problem.particles, *scenario.impact);
+    // Rays end at the inner face of the fixed shell (the default, from the particles' extent and the
+    // largest h, is thrown off by isolated particles with large h above the target).
+    measurement.max_radius = scenario.impact->domain_radius - scenario.impact->fixed_shell_thickness;
+  }
+  ProblemSetup problem = std::move(scenario.problem);
   std::unique_ptr<Simulation> sim;
   std::size_t next_snapshot = 0;
   if (files && options.resume && fs::exists(checkpoint_path)) {
@@ -285,6 +447,51 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
     }
     summary.conservation_log = csv.string();
   }
+
+  std::unique_ptr<StepCsvLog> ejecta_log;
+  if (files && sim->problem().ejection_radius > 0.0) {
+    ejecta_log =
+        std::make_unique<StepCsvLog>(out / "ejecta.csv", ejecta_csv_header(), ejecta_csv_step_column,
+                                     summary.resumed ? static_cast<std::int64_t>(sim->step_count()) : -1);
+    summary.ejecta_log = ejecta_log->path().string();
+  }
+
+  // End of crater growth (impact runs): samples every check interval, logged to crater_growth.csv so
+  // that a resumed run continues with the same history.
+  std::vector<CraterGrowthSample> growth;
+  std::unique_ptr<StepCsvLog> growth_log;
+  const double check_interval =
+      config.crater.check_interval > 0.0 ? config.crater.check_interval : config.run.end_time / 200.0;
+  double next_check = 0.0;
+  if (scenario.impact && files) {
+    growth_log =
+        std::make_unique<StepCsvLog>(out / "crater_growth.csv", "time,step,crater_radius,kinetic_energy", 1,
+                                     summary.resumed ? static_cast<std::int64_t>(sim->step_count()) : -1);
+    for (const auto& row : growth_log->kept_rows()) {
+      growth.push_back({std::stod(row[0]), std::stoull(row[1]), std::stod(row[2]), std::stod(row[3])});
+    }
+    if (!growth.empty()) next_check = growth.back().time + check_interval;
+  }
+  CraterGrowthCriteria criteria;
+  criteria.radius_tolerance = config.crater.radius_tolerance;
+  criteria.kinetic_energy_fraction = config.crater.kinetic_energy_fraction;
+  criteria.window_fraction = config.crater.window_fraction;
+  auto check_crater_growth = [&]() {
+    if (!scenario.impact || sim->time() < next_check) return false;
+    auto scope = sim->timers().measure("crater");
+    const CraterMeasurement m = measure_crater(sim->particles(), measurement);
+    const CraterGrowthSample sample{sim->time(), sim->step_count(), m.crater_radius,
+                                    moving_kinetic_energy(sim->particles())};
+    growth.push_back(sample);
+    if (growth_log) {
+      char row[256];
+      std::snprintf(row, sizeof row, "%.17g,%llu,%.17g,%.17g", sample.time,
+                    static_cast<unsigned long long>(sample.step), sample.radius, sample.kinetic_energy);
+      growth_log->append(row);
+    }
+    next_check = sample.time + check_interval;
+    return config.crater.stop_when_grown && crater_growth_ended(growth, criteria);
+  };
 
   auto write_checkpoint_now = [&](std::size_t snapshot_index) {
     if (!files) return;
@@ -320,11 +527,32 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   const std::uint64_t first_step = sim->step_count();
   auto last_checkpoint_wall = std::chrono::steady_clock::now();
   const auto& p = sim->particles();
-  while (sim->time() < config.run.end_time &&
+  if (!summary.resumed) {
+    summary.crater_growth_ended = check_crater_growth();
+  } else {
+    summary.crater_growth_ended = config.crater.stop_when_grown && crater_growth_ended(growth, criteria);
+  }
+  while (!summary.crater_growth_ended && sim->time() < config.run.end_time &&
          (config.run.max_steps == 0 || sim->step_count() < config.run.max_steps)) {
     double target = config.run.end_time;
     if (next_snapshot < snapshot_times.size()) target = std::min(target, snapshot_times[next_snapshot]);
+    const bool was_late = sim->late_stage_active();
+    const double dt_before = sim->next_time_step();
     sim->step(target);
+    if (!was_late && sim->late_stage_active() && options.log) {
+      std::fprintf(
+          stderr,
+          "\nlate stage: switched to the low-sound-speed medium at t = %.6g s (step %llu), A_low = %.6g "
+          "Pa; largest Mach number |v|/c just after the switch %.4g; time step %.4g s -> %.4g s\n",
+          sim->time(), static_cast<unsigned long long>(sim->step_count()), sim->problem().late_stage.A_low[0],
+          sim->mach_at_transition(), dt_before, sim->next_time_step());
+    }
+    if (ejecta_log) {
+      auto scope = timers.measure("output");
+      for (const auto& record : sim->take_new_ejecta()) ejecta_log->append(ejecta_csv_row(record));
+    } else {
+      (void)sim->take_new_ejecta();
+    }
     if (log) {
       auto scope = timers.measure("output");
       log->append(sim->conserved());
@@ -342,6 +570,7 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
       write_checkpoint_now(next_snapshot);
       last_checkpoint_wall = now;
     }
+    summary.crater_growth_ended = check_crater_growth();
     progress.update(sim->time(), sim->step_count(), sim->next_time_step(), p.size());
   }
   progress.finish(sim->time(), sim->step_count(), sim->next_time_step(), p.size());
@@ -355,6 +584,35 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
     write_checkpoint_now(next_snapshot);
   }
 
+  if (sim->problem().late_stage.planned()) {
+    summary.transition_time = sim->problem().late_stage.transition_time;
+    summary.late_stage = sim->late_stage_active();
+    summary.mach_at_transition = sim->mach_at_transition();
+    summary.late_stage_max_mach = sim->late_stage_max_mach();
+    if (summary.late_stage && options.log) {
+      std::fprintf(stderr,
+                   "late stage: largest Mach number |v|/c since the switch %.4g (at the switch %.4g)\n",
+                   summary.late_stage_max_mach, summary.mach_at_transition);
+    }
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.flags[i] & particle_ejected) == 0) continue;
+    ++summary.ejected_particles;
+    summary.ejected_mass += p.mass[i];
+  }
+  if (scenario.impact) {
+    auto scope = timers.measure("crater");
+    summary.crater = measure_crater(p, measurement);
+    if (files) {
+      write_crater_files(out, *summary.crater, sim->time());
+      summary.crater_json = (out / "crater.json").string();
+    }
+    if (options.log) {
+      std::fprintf(stderr, "crater: radius %.4g +- %.2g m at t = %.6g s%s\n", summary.crater->crater_radius,
+                   summary.crater->crater_radius_uncertainty, sim->time(),
+                   summary.crater_growth_ended ? " (growth ended)" : "");
+    }
+  }
   const auto final_state = sim->conserved();
   summary.particles = p.size();
   summary.steps = sim->step_count();

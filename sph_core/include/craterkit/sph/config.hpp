@@ -3,8 +3,13 @@
 // default (the struct initialisers below); unknown keys, wrong types and out-of-range values are
 // craterkit::InputError naming the key, the value and what is allowed.
 //
-//   [problem]    name, setup = "sedov" | "sod" | "plates"
+//   [problem]    name, setup = "sedov" | "sod" | "plates" | "impact"
 //   [sedov] / [sod] / [plates]   the set-up parameters (setups.hpp); only the chosen one may appear
+//   [impact]     the impact set-up (impact_config.hpp, docs/impact_setup.md)
+//   [late_stage] t_transition (s), A_low (Pa): the low-sound-speed switch for non-impact problems (an
+//                impact takes them from impact.t_transition and impact.A_low)
+//   [crater]     impact only: end of crater growth (check_interval, radius_tolerance,
+//                kinetic_energy_fraction, window_fraction, stop_when_grown; docs/crater_measurement.md)
 //   [run]        end_time (s), max_steps (0: no limit), gravity = [gx, gy, gz] (m/s^2)
 //   [kernel]     type = "cubic_spline" | "wendland_c2", eta, min_smoothing_length, max_smoothing_length,
 //                neighbour_band (integrator.hpp), density = "continuity" | "summation"
@@ -20,6 +25,7 @@
 #include <variant>
 #include <vector>
 
+#include "craterkit/sph/impact_setup.hpp"
 #include "craterkit/sph/integrator.hpp"
 #include "craterkit/sph/neighbour_search.hpp"
 #include "craterkit/sph/rates.hpp"
@@ -47,7 +53,25 @@ struct NeighbourParameters {
   std::uint64_t sort_interval = 20;  // steps between space-filling-curve sorts (0: never)
 };
 
-using SetupParameters = std::variant<SedovSetup, SodSetup, PlateImpactSetup>;
+// The late-stage switch of a non-impact problem (late_stage.hpp); t_transition = 0: none.
+struct LateStageParameters {
+  double transition_time = 0.0;  // s
+  double A_low = 0.027e6;        // Pa
+};
+
+// When crater growth has ended (impact runs; crater_growth.hpp): the crater is measured every
+// check_interval of simulated time, and the run stops once, over the last window_fraction of the elapsed
+// time, the measured radius stayed within radius_tolerance (relative) and the kinetic energy of the moving
+// particles stayed below kinetic_energy_fraction of its peak.
+struct CraterParameters {
+  double check_interval = 0.0;  // s; 0: end_time / 200
+  double radius_tolerance = 0.01;
+  double kinetic_energy_fraction = 1e-3;
+  double window_fraction = 0.2;
+  bool stop_when_grown = true;
+};
+
+using SetupParameters = std::variant<SedovSetup, SodSetup, PlateImpactSetup, ImpactSetup>;
 
 struct SimulationConfig {
   std::string name = "simulation";
@@ -60,6 +84,8 @@ struct SimulationConfig {
   TimeStepParameters time_step{};
   NeighbourParameters neighbours{};
   OutputParameters output{};
+  LateStageParameters late_stage{};
+  CraterParameters crater{};
 };
 
 // Parses TOML text; `source` names the file in error messages.

@@ -8,6 +8,7 @@
 #include "craterkit/sph/material.hpp"
 #include "craterkit/sph/neighbour_search.hpp"
 #include "craterkit/sph/particles.hpp"
+#include "craterkit/sph/snapshot.hpp"
 
 namespace craterkit::sph {
 
@@ -55,10 +56,26 @@ struct PlateImpactSetup {
   int cross_section_particles = 6;     // lattice cells across y and z
 };
 
+// The late-stage switch planned for a run (late_stage.hpp, physics.md section 3): at transition_time
+// every material id switches to the low-sound-speed law with its own A_low[id] (Pa). Empty A_low: no
+// switch. Per material because a density-scaled stand-in projectile (impact_setup.hpp) needs A_low
+// scaled by its density factor k to keep the sound speed of the material it stands for.
+struct LateStagePlan {
+  double transition_time = 0.0;  // s
+  std::vector<double> A_low;     // Pa, index = material id
+  [[nodiscard]] bool planned() const { return !A_low.empty(); }
+};
+
 struct ProblemSetup {
   Particles particles;
   std::vector<Material> materials;  // materials[id] for Particles::material == id
   Box box;
+  LateStagePlan late_stage{};
+  // Ejecta (docs/impact_setup.md): a moving particle above the pre-impact plane z = 0 farther than
+  // ejection_radius from the origin leaves the hydrodynamics (0: no ejection).
+  double ejection_radius = 0.0;  // m
+  // Constant attributes of the run written into every snapshot and checkpoint (e.g. the impact's).
+  RunAttributes attributes{};
 };
 
 // eta: h = eta (m/rho)^(1/3); alpha: the initial artificial-viscosity coefficient.

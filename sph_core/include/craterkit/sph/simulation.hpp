@@ -14,19 +14,47 @@
 // strength) the same per-particle phase evaluates the porous pressure and returns states to the crush
 // curve, and the distention rate follows the pair pass. Fluid-only runs take the fluid path unchanged.
 //
+// Late-stage transition (late_stage.hpp, physics.md section 3): when the problem plans one, the step
+// that would pass t_transition is shortened to end on it; after that step every material switches to the
+// low-sound-speed law, the equation of state and the rates are evaluated again with the new laws (so the
+// integrator's stored rates belong to the switched medium), and the time step follows the new sound speeds.
+// The switch keeps each particle's pressure: its density is re-referenced so that the new law returns
+// the pressure it had, rho = rho_m0 (1 + alpha P / A_low) / alpha, with the matrix strain alpha P / A_low
+// capped at +-late_stage_max_reference_strain (beyond it the pressure drops to the cap's). Without this a
+// target at rest would suddenly carry its lithostatic load with a medium A/A_low times softer and sag
+// (docs/validation.md, "Lithostatic rest"); the density of continuity-SPH is a state variable, so
+// this moves no particle and changes no mass or energy. The deviatoric stress is kept likewise, with the
+// elastic shear strain sqrt(J2)/(2 G) under the new (A_low/A times smaller) shear modulus capped at the
+// same 0.1: a shock-stage stress of 1 MPa in a projectile whose late-stage G is a few kPa would otherwise
+// hold an elastic energy S^2/(4G) far above the impact energy and release it as motion (measured on a
+// 5 m/s impact: the kinetic energy grew 20-fold after the switch, Mach 12).
+// The switch is logged on stderr with the largest Mach number |v|/c just after it; the largest Mach
+// number over the late stage is tracked every step. Both go into the attributes of later snapshots and
+// checkpoints (record_late_stage(), plus "late_stage_max_mach"), and a run resumed from a checkpoint
+// written after the switch starts in the switched state.
+//
+// Ejecta (ejecta.hpp): after every step, moving particles beyond the problem's ejection radius are
+// flagged particle_ejected and moved behind the others; the neighbour search and the pair loops only see
+// the first active_particles() particles, the other phases skip the flag.
+//
 // run_simulation() adds the outputs around the steps: HDF5 snapshots at the requested times (with
 // XDMF), a checkpoint (atomically replaced) every N steps or wall seconds and at the end, the
 // conserved-quantities log per step, the progress line, and the summary.
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "craterkit/sph/config.hpp"
 #include "craterkit/sph/conservation_log.hpp"
+#include "craterkit/sph/crater_measurement.hpp"
+#include "craterkit/sph/ejecta.hpp"
+#include "craterkit/sph/impact_setup.hpp"
 #include "craterkit/sph/integrator.hpp"
+#include "craterkit/sph/late_stage.hpp"
 #include "craterkit/sph/neighbour_search.hpp"
 #include "craterkit/sph/phase_timers.hpp"
 #include "craterkit/sph/rates.hpp"
@@ -37,7 +65,17 @@
 
 namespace craterkit::sph {
 
-// The set-up named by the configuration (problem.setup).
+constexpr double late_stage_max_reference_strain = 0.1;
+
+// The set-up named by the configuration (problem.setup), with what the run needs besides the
+// particles: the impact summary (impact set-ups only), the late-stage plan (impact: from the summary,
+// A_low scaled by the stand-in's density factor for the projectile material; others: [late_stage]),
+// the ejection radius (impact: R_dom) and the constant run attributes (impact_run_attributes()).
+struct Scenario {
+  ProblemSetup problem;
+  std::optional<ImpactSummary> impact;
+};
+Scenario build_scenario(const SimulationConfig& config);
 ProblemSetup build_problem(const SimulationConfig& config);
 
 class Simulation {
@@ -70,6 +108,16 @@ class Simulation {
   // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
   [[nodiscard]] double bytes_per_particle() const;
   [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
+  // Particles not ejected (they come first in the arrays).
+  [[nodiscard]] std::size_t active_particles() const { return active_; }
+  [[nodiscard]] const ProblemSetup& problem() const { return problem_; }
+
+  // Late stage: whether the switch has happened, the largest Mach number just after it and since.
+  [[nodiscard]] bool late_stage_active() const { return late_stage_active_; }
+  [[nodiscard]] double mach_at_transition() const { return mach_at_transition_; }
+  [[nodiscard]] double late_stage_max_mach() const { return late_stage_max_mach_; }
+  // Ejections since the last call (in order), for the ejecta log.
+  [[nodiscard]] std::vector<EjectaRecord> take_new_ejecta() { return std::exchange(new_ejecta_, {}); }
 
   // Everything a checkpoint needs besides the particles.
   [[nodiscard]] RunAttributes attributes() const;
@@ -81,6 +129,10 @@ class Simulation {
   void configure();  // shared by both constructors: laws, rate options, particle storage
   void evaluate_rates();
   void update_equation_of_state();
+  void switch_to_late_stage();  // the materials and the fluid laws (no logging, no rate evaluation)
+  void eject();                 // flags, records and moves ejecta behind the active particles
+  void keep_pressure_across_switch();
+  void cap_elastic_shear_strain();
 
   SimulationConfig config_;
   ProblemSetup problem_;
@@ -103,12 +155,18 @@ class Simulation {
   std::uint64_t rebuilds_ = 0;
   bool force_rebuild_ = true;
   bool porous_ = false;  // a material has [porosity]: the distention evolves (P-alpha)
+  std::size_t active_ = 0;
+  bool late_stage_active_ = false;
+  double mach_at_transition_ = 0.0;
+  double late_stage_max_mach_ = 0.0;
+  std::vector<EjectaRecord> new_ejecta_;
 };
 
 struct RunOptions {
   std::filesystem::path output_directory;  // empty: run without writing files
   bool resume = false;                     // continue from output_directory/checkpoint.h5 if present
   bool progress = true;                    // the progress line on stderr
+  bool log = true;                         // set-up description and late-stage messages on stderr
 };
 
 struct SimulationSummary {
@@ -132,6 +190,18 @@ struct SimulationSummary {
   std::string checkpoint;              // the last checkpoint written ("" if none)
   std::string conservation_log;
   std::string phase_table;  // PhaseTimers::table()
+  // Late stage (when planned).
+  bool late_stage = false;           // the switch happened
+  double transition_time = 0.0;      // s
+  double mach_at_transition = 0.0;   // max |v|/c just after the switch
+  double late_stage_max_mach = 0.0;  // max |v|/c over the late stage
+  // Impact runs.
+  std::size_t ejected_particles = 0;
+  double ejected_mass = 0.0;  // kg (in this domain)
+  std::string ejecta_log;
+  bool crater_growth_ended = false;         // stopped because growth ended (else end_time or max_steps)
+  std::optional<CraterMeasurement> crater;  // final measurement
+  std::string crater_json;
 };
 
 SimulationSummary run_simulation(const SimulationConfig& config, const RunOptions& options);

@@ -1,0 +1,50 @@
+#pragma once
+// Ejecta leaving the simulated domain (physics.md section 4, issue 6).
+//
+// Rule (docs/impact_setup.md, "Ejecta"): a moving particle (neither fixed nor already ejected) that is
+// above the pre-impact plane (z > 0) and farther than R_ej from the impact point (the origin),
+// |x| > R_ej with R_ej = R_dom the domain radius, has left the domain: nothing it meets any more is
+// simulated (the fixed shell ends at R_dom), and on a milligravity body the fraction of it that would fall
+// back lands outside the crater. It is flagged particle_ejected and taken out of the hydrodynamics: the
+// engine keeps ejected particles at the end of the arrays, outside the neighbour search, the pair loops,
+// the time step and the integrator, frozen at their launch state. Mass, momentum and energy stay in the
+// particle set (the conserved-quantity sums include them; a frozen particle keeps its kinetic plus
+// potential energy, as a ballistic one in constant gravity would), so target + projectile + ejecta mass
+// is exactly the initial mass.
+//
+// Each ejection is recorded (particle id, material, mass, launch time and step, launch position and
+// velocity) in ejecta.csv, one row per particle, resumable with the run (step_csv_log.hpp).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "craterkit/sph/particles.hpp"
+
+namespace craterkit::sph {
+
+struct EjectaRecord {
+  std::uint64_t id = 0;
+  std::uint16_t material = 0;
+  double mass = 0.0;                    // kg
+  double time = 0.0;                    // s, launch (the end of the step in which it left)
+  std::uint64_t step = 0;               // completed steps at launch
+  double x = 0.0, y = 0.0, z = 0.0;     // m
+  double vx = 0.0, vy = 0.0, vz = 0.0;  // m/s
+};
+
+// Flags every moving particle with z > 0 and x^2 + y^2 + z^2 > radius^2 as particle_ejected and appends
+// its record to `out` (in index order). Returns the number flagged. radius <= 0: nothing is ejected.
+std::size_t eject_particles(Particles& particles, double radius, double time, std::uint64_t step,
+                            std::vector<EjectaRecord>& out);
+
+// Permutation (for Particles::permute) that moves every ejected particle behind the others, keeping the
+// relative order within both groups; *active receives the number of particles not ejected.
+std::vector<std::uint32_t> ejected_last_order(const Particles& particles, std::size_t* active);
+
+// ejecta.csv: header and rows (17 significant digits).
+const char* ejecta_csv_header();
+std::string ejecta_csv_row(const EjectaRecord& record);
+constexpr std::size_t ejecta_csv_step_column = 4;
+
+}  // namespace craterkit::sph

@@ -1,0 +1,42 @@
+#include "craterkit/sph/crater_growth.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace craterkit::sph {
+
+bool crater_growth_ended(std::span<const CraterGrowthSample> samples, const CraterGrowthCriteria& c) {
+  if (samples.empty()) return false;
+  const auto& last = samples.back();
+  if (!(last.time > 0.0) || !(last.radius > 0.0) || !std::isfinite(last.radius)) return false;
+  double peak = 0.0;
+  for (const auto& s : samples) peak = std::max(peak, s.kinetic_energy);
+  if (!(peak > 0.0)) return false;
+  const double start = (1.0 - c.window_fraction) * last.time;
+  std::size_t in_window = 0;
+  for (const auto& s : samples) {
+    if (s.time < start) continue;
+    ++in_window;
+    if (!std::isfinite(s.radius) || std::abs(s.radius - last.radius) > c.radius_tolerance * last.radius) {
+      return false;
+    }
+    if (s.kinetic_energy > c.kinetic_energy_fraction * peak) return false;
+  }
+  return in_window >= c.min_window_samples;
+}
+
+double moving_kinetic_energy(const Particles& p) {
+  const auto n = static_cast<std::int64_t>(p.size());
+  double sum = 0.0;
+  // Fixed static schedule and a reduction: the value may differ in the last bits with the thread count;
+  // it only feeds the termination test, never the state.
+#pragma omp parallel for schedule(static) reduction(+ : sum)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
+    sum += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+  }
+  return sum;
+}
+
+}  // namespace craterkit::sph
