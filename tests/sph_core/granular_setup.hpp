@@ -217,6 +217,19 @@ inline SlopeFit flank_slope(const SurfaceProfile& profile, double lower, double 
   return fit;
 }
 
+// Root-mean-square speed of the granular particles, m/s: "at rest" is judged on it, so that a single
+// grain still rattling at the toe does not count as flow.
+inline double rms_speed(const Particles& p) {
+  double v2 = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if ((p.flags[k] & particle_fixed) != 0 || p.material[k] != 0) continue;
+    v2 += p.vx[k] * p.vx[k] + p.vy[k] * p.vy[k] + p.vz[k] * p.vz[k];
+    ++n;
+  }
+  return n > 0 ? std::sqrt(v2 / n) : 0.0;
+}
+
 // Largest speed of the moving particles, m/s.
 inline double max_speed(const Particles& p) {
   double v2 = 0.0;

@@ -33,7 +33,8 @@ double repose_angle_degrees(double friction) {
 
 struct Deposit {
   SurfaceProfile profile;
-  double end_speed;  // largest particle speed at the end, m/s
+  double end_speed;      // largest particle speed at the end, m/s
+  double end_rms_speed;  // rms speed of the granular particles at the end, m/s
   double wall_seconds;
   std::size_t particles;
   std::uint64_t steps;
@@ -69,6 +70,7 @@ Deposit run_block(const BlockSetup& s, double end_time_units) {
   Deposit d;
   d.profile = surface_profile(sim.particles(), s);
   d.end_speed = max_speed(sim.particles());
+  d.end_rms_speed = rms_speed(sim.particles());
   d.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   d.particles = sim.particles().size();
   d.steps = sim.step_count();
@@ -78,7 +80,7 @@ Deposit run_block(const BlockSetup& s, double end_time_units) {
 // ---------------------------------------------------------------------------------------------------
 // (a) Angle of repose, static part: the steepest slope a cohesionless layer holds, found by tilting.
 // An infinite slope (granular_setup.hpp, SlopeSetup: 12 cells deep on an elastic floor, periodic along
-// the slope) starts in its static elastic state at theta(f) - 6 degrees and settles for 2 sqrt(D/g);
+// the slope) starts in its static elastic state at theta(f) - 8 degrees and settles for 8 sqrt(D/g);
 // then gravity is tilted by 0.5 degrees at a time (the run continues from its particles, as a restart
 // does, under the new gravity), each tilt held for 2 sqrt(D/g), until the layer flows: its mean
 // downslope speed, averaged over the second half of the hold, exceeds 0.005 sqrt(g D). The critical
@@ -98,12 +100,15 @@ Tilt tilt_until_flow(double friction, int depth_cells) {
   SlopeSetup s;
   s.friction = friction;
   s.depth_cells = depth_cells;
-  s.slope_degrees = std::round(2.0 * (repose_angle_degrees(friction) - 6.0)) / 2.0;
+  s.slope_degrees = std::round(2.0 * (repose_angle_degrees(friction) - 8.0)) / 2.0;
   const double hold = 2.0 * std::sqrt(layer_depth(s) / s.gravity);
   const double unit = std::sqrt(s.gravity * layer_depth(s));
   SimulationConfig config = slope_config(s);
   auto sim = std::make_unique<Simulation>(config, make_slope(s, config));
   Tilt tilt{NAN, {}, {}};
+  // Settle: the continuum state rings the layer for a few sqrt(D/g) (see above); 8 degrees below
+  // theta(f) the ringing cannot reach the yield stress.
+  while (sim->time() < 4.0 * hold) sim->step(4.0 * hold);
   while (s.slope_degrees < repose_angle_degrees(friction) + 8.0) {
     // Mean downslope speed over the second half of the hold, sampled 20 times: the elastic ringing
     // after a tilt (up to ~0.008 sqrt(g D) at the end of a hold) averages out, a flow does not.
@@ -165,7 +170,7 @@ TEST(GranularRepose, TiltedLayerFrictionPointSeven) {
 // also find run-out linear in a at small a in their channel). A column against the back wall, released
 // at t = 0 from the lithostatic state, f = 0.55 (theta = 29 degrees, a sand); run-out = far edge of the
 // last column of the surface profile holding at least half a layer of particles, measured at rest
-// (largest particle speed below 0.05 sqrt(g H0): 8 sqrt(H0/g) for a = 1, 10 for a = 1.5). Accepted:
+// (rms speed of the grains below 0.01 sqrt(g H0): 8 sqrt(H0/g) for a = 1, 10 for a = 1.5). Accepted:
 // within 20 % of 1.2 a, our reading of the spread of the experimental points about the fit (the papers
 // themselves were not at hand here; the coefficient 1.2 and the bound 1.8 are as quoted in issue 5).
 double runout_ratio(int height_cells, int width_cells, double end_units, const std::string& csv) {
@@ -179,13 +184,14 @@ double runout_ratio(int height_cells, int width_cells, double end_units, const s
   const double L0 = block_width(s);
   const double ratio = (runout(d.profile, s.spacing) - L0) / L0;
   std::printf(
-      "collapse a = %.2f: (L - L0)/L0 = %.3f, Lube 1.2 a = %.3f (%+.1f %%); end speed %.4f sqrt(gH); %zu "
+      "collapse a = %.2f: (L - L0)/L0 = %.3f, Lube 1.2 a = %.3f (%+.1f %%); end speed max %.4f, rms %.5f sqrt(gH); %zu "
       "particles, %llu steps, %.1f s\n",
       a, ratio, 1.2 * a, 100.0 * (ratio / (1.2 * a) - 1.0),
-      d.end_speed / std::sqrt(s.gravity * block_height(s)), d.particles,
+      d.end_speed / std::sqrt(s.gravity * block_height(s)),
+      d.end_rms_speed / std::sqrt(s.gravity * block_height(s)), d.particles,
       static_cast<unsigned long long>(d.steps), d.wall_seconds);
   write_profile(d, csv, "collapse a=" + std::to_string(a) + " ratio=" + std::to_string(ratio));
-  EXPECT_LT(d.end_speed, 0.05 * std::sqrt(s.gravity * block_height(s)));  // at rest
+  EXPECT_LT(d.end_rms_speed, 0.01 * std::sqrt(s.gravity * block_height(s)));  // at rest
   return ratio;
 }
 
