@@ -9,8 +9,9 @@
 // they carry no stress (the engine evolves none for them), so the pair force a fixed neighbour j exerts
 // holds only sigma_i/rho_i^2. Next to them a stressed particle loses half of its support: the floor acts
 // on the bottom layer like a stress-free surface and supplies basal shear only through the kernel
-// asymmetry the particle builds by sliding. A cohesionless layer on a fixed floor slid at its base at
-// 33 degrees with f = 0.7 (tan 35 deg), and earlier the shallower the finer the resolution. The elastic
+// asymmetry the particle builds by sliding. A cohesionless layer (f = 0.7, 24 cells) started in its
+// static state at 33 degrees (atan 0.7 = 35 deg) on a fixed floor slid at its base (bottom layer at
+// 0.02 sqrt(g D) after sqrt(D/g)). The elastic
 // layer carries stress like the material it supports, so the granular particles see a continuum with a
 // no-slip, stress-carrying base; the fixed backing holds the elastic layer, which can take any stress
 // the imperfect fixed interface demands without yielding.
