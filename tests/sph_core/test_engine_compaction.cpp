@@ -38,6 +38,7 @@
 #include "craterkit/sph/material.hpp"
 #include "craterkit/sph/p_alpha.hpp"
 #include "craterkit/sph/simulation.hpp"
+#include "engine_test_helpers.hpp"
 
 namespace {
 
@@ -280,15 +281,7 @@ TEST(EngineCompaction, CompactingRestartIsBitwise) {
   EXPECT_LT(*std::min_element(a.distention.begin(), a.distention.end()), alpha0 - 0.05);  // compacting
   EXPECT_EQ(straight.time(), resumed.time());
   EXPECT_EQ(straight.next_time_step(), resumed.next_time_step());
-  a.for_each_field([&](std::string_view name, const auto& field) {
-    b.for_each_field([&](std::string_view other, const auto& other_field) {
-      if constexpr (std::is_same_v<decltype(field), decltype(other_field)>) {
-        if (name == other) {
-          EXPECT_TRUE(field == other_field) << name;
-        }
-      }
-    });
-  });
+  engine_test::expect_identical_particles(a, b);
 }
 
 }  // namespace

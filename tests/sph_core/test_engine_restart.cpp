@@ -45,19 +45,6 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
-void expect_identical(const Particles& a, const Particles& b) {
-  ASSERT_EQ(a.size(), b.size());
-  a.for_each_field([&](std::string_view name, const auto& field) {
-    bool same = false;
-    b.for_each_field([&](std::string_view other, const auto& other_field) {
-      if constexpr (std::is_same_v<decltype(field), decltype(other_field)>) {
-        if (name == other) same = field == other_field;
-      }
-    });
-    EXPECT_TRUE(same) << "field " << name << " differs";
-  });
-}
-
 }  // namespace
 
 TEST(Restart, ResumedRunEqualsUninterruptedRunBitwise) {
@@ -96,7 +83,7 @@ TEST(Restart, ResumedRunEqualsUninterruptedRunBitwise) {
   EXPECT_EQ(a.time, b.time);
   EXPECT_EQ(a.step, b.step);
   EXPECT_EQ(a.numbers.at("next_time_step"), b.numbers.at("next_time_step"));
-  expect_identical(one, two);
+  engine_test::expect_identical_particles(one, two);
   EXPECT_EQ(read_text(straight / "conservation.csv"), read_text(resumed / "conservation.csv"));
   for (const auto& dir : {straight, resumed, partial}) fs::remove_all(dir);
 }
@@ -108,7 +95,7 @@ TEST(Restart, ResultIndependentOfThreadCount) {
   omp_set_num_threads(2);
   auto two = engine_test::run_to(config, 0.2);
   // Gather-form pair loops and a deterministic neighbour search: identical, not merely close.
-  expect_identical(one.particles(), two.particles());
+  engine_test::expect_identical_particles(one.particles(), two.particles());
 }
 
 TEST(Restart, SummaryReportsTheIssueFigures) {

@@ -13,6 +13,7 @@
 
 #include "craterkit/sph/checkpoint.hpp"
 #include "craterkit/sph/simulation.hpp"
+#include "engine_test_helpers.hpp"
 
 using namespace craterkit::sph;
 namespace fs = std::filesystem;
@@ -50,19 +51,6 @@ std::string read_text(const fs::path& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-void expect_identical(const Particles& a, const Particles& b) {
-  ASSERT_EQ(a.size(), b.size());
-  a.for_each_field([&](std::string_view name, const auto& field) {
-    bool same = false;
-    b.for_each_field([&](std::string_view other, const auto& other_field) {
-      if constexpr (std::is_same_v<decltype(field), decltype(other_field)>) {
-        if (name == other) same = field == other_field;
-      }
-    });
-    EXPECT_TRUE(same) << "field " << name << " differs";
-  });
 }
 
 }  // namespace
@@ -146,7 +134,7 @@ TEST(LateStageEngine, ResumedRunsEqualTheUninterruptedRunAcrossTheSwitch) {
     const Particles two = read_checkpoint(partial / "checkpoint.h5", &y);
     EXPECT_EQ(x.time, y.time);
     EXPECT_EQ(x.numbers.at("next_time_step"), y.numbers.at("next_time_step"));
-    expect_identical(one, two);
+    engine_test::expect_identical_particles(one, two);
     EXPECT_EQ(read_text(straight / "conservation.csv"), read_text(partial / "conservation.csv"));
     fs::remove_all(partial);
   }
