@@ -187,12 +187,19 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     t.max_step = s.number("max_step", t.max_step, 0.0, inf, true);
     // Impacts default to the velocity-change limit (time_step.hpp: the light stand-in projectile).
     t.velocity_change = s.number("velocity_change", impact_setup_parameters != nullptr ? 0.1 : 0.0, 0.0, 1.0);
+    t.block_levels = static_cast<int>(s.integer("block_levels", 0, 0, 30));
+    if (t.block_levels > 0 && c.density == DensityMethod::summation) {
+      s.fail("block_levels",
+             "block time steps need kernel.density = \"continuity\" (a summed density would "
+             "need every neighbour's density at every substep)");
+    }
     s.finish();
   }
   {
     TomlKeys s = section("neighbours");
     auto& n = c.neighbours;
-    n.search.skin = s.number("skin", n.search.skin, 0.0, 1.0);
+    // Block time steps check the lists at every substep: without a skin they would be rebuilt at each.
+    n.search.skin = s.number("skin", c.time_step.block_levels > 0 ? 0.1 : n.search.skin, 0.0, 1.0);
     n.sort_interval = static_cast<std::uint64_t>(s.integer("sort_interval", 20, 0, int_max));
     s.finish();
   }

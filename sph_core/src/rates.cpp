@@ -50,8 +50,9 @@ inline bool invert3(const double m[9], double inv[9]) noexcept {
 
 template <class Kernel, bool solid>
 RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
-                       RateWorkspace& workspace, VelocityGradients* gradients) {
-  const auto n = static_cast<std::int64_t>(p.size());
+                       RateWorkspace& workspace, VelocityGradients* gradients,
+                       const ParticleSelection& selection) {
+  const auto n = static_cast<std::int64_t>(selection.size());
   const double* x = p.x.data();
   const double* y = p.y.data();
   const double* z = p.z.data();
@@ -68,6 +69,8 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   const double* volume = workspace.volume.data();
   workspace.neighbour_count.resize(p.size());
   std::uint32_t* neighbour_count = workspace.neighbour_count.data();
+  workspace.signal_time.resize(p.size());
+  double* signal_time = workspace.signal_time.data();
   const double* sxx = p.stress_xx.data();
   const double* sxy = p.stress_xy.data();
   const double* sxz = p.stress_xz.data();
@@ -100,11 +103,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
 #pragma omp parallel for schedule(dynamic, 128) reduction(min : min_signal_time) reduction(+ : interacting)
   for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+    const auto i = selection.at(static_cast<std::size_t>(ii));
     if ((flags[i] & (particle_fixed | particle_ejected)) != 0) {
       ax_out[i] = ay_out[i] = az_out[i] = 0.0;
       drho_out[i] = du_out[i] = dalpha_out[i] = 0.0;
       neighbour_count[i] = 0;
+      signal_time[i] = inf;
       continue;
     }
     const double xi = x[i], yi = y[i], zi = z[i];
@@ -252,7 +256,8 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
     const double beta_i = use_switch ? beta_over_alpha * alphai : av.beta;
     const double signal = ci + 1.2 * (alphai * ci + beta_i * max_mu);
-    if (signal > 0.0) min_signal_time = std::min(min_signal_time, hi / signal);
+    signal_time[i] = signal > 0.0 ? hi / signal : inf;
+    min_signal_time = std::min(min_signal_time, signal_time[i]);
     interacting += count;
     neighbour_count[i] = static_cast<std::uint32_t>(count);
   }
@@ -263,11 +268,18 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
 RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                           RateWorkspace& workspace, VelocityGradients* gradients) {
+  return compute_rates(particles, pairs, options, workspace, ParticleSelection::all(particles.size()),
+                       gradients);
+}
+
+RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                          RateWorkspace& workspace, const ParticleSelection& selection,
+                          VelocityGradients* gradients) {
   if (gradients != nullptr) gradients->resize(particles.size());
   return with_kernel(options.kernel, [&](auto kernel) {
     using K = decltype(kernel);
-    return options.solid ? rates_impl<K, true>(particles, pairs, options, workspace, gradients)
-                         : rates_impl<K, false>(particles, pairs, options, workspace, gradients);
+    return options.solid ? rates_impl<K, true>(particles, pairs, options, workspace, gradients, selection)
+                         : rates_impl<K, false>(particles, pairs, options, workspace, gradients, selection);
   });
 }
 

@@ -58,6 +58,7 @@ std::string field_unit(std::string_view field_name) {
       {"density_rate", "kg/m^3/s"},
       {"energy_rate", "W/kg"},
       {"viscosity_alpha_rate", "1/s"},
+      {"time_step", "s"},
       {"stress_rate_xx", "Pa/s"},
       {"stress_rate_xy", "Pa/s"},
       {"stress_rate_xz", "Pa/s"},

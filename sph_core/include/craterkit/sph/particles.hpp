@@ -60,6 +60,11 @@ struct Particles {
   std::vector<double> density_rate;                                    // drho/dt, kg/m^3/s
   std::vector<double> energy_rate;                                     // du/dt, W/kg
   std::vector<double> viscosity_alpha_rate;                            // dalpha/dt, 1/s
+  // The step this particle may take on its own, s (time_step.hpp: the smallest of its Courant,
+  // acceleration, density, energy and velocity-change limits) from its last rate evaluation. State for
+  // block time steps (block_time_steps.hpp: the next block's levels come from it, also after a restart);
+  // with a global step it shows which particles hold the step down.
+  std::vector<double> time_step;
   // Solid mechanics (stress_rates.hpp; only while solid_fields): the Jaumann rate dS/dt, Pa/s, and the
   // rate of the accumulated strain, 1/s.
   std::vector<double> stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz;
@@ -107,6 +112,7 @@ struct Particles {
     visit(std::string_view{"density_rate"}, density_rate);
     visit(std::string_view{"energy_rate"}, energy_rate);
     visit(std::string_view{"viscosity_alpha_rate"}, viscosity_alpha_rate);
+    visit(std::string_view{"time_step"}, time_step);
     if (solid_fields) for_each_solid_field(visit);
   }
   // The solid-mechanics group alone (visited whether or not it is allocated).

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "craterkit/sph/kernel.hpp"
+#include "craterkit/sph/particle_selection.hpp"
 #include "craterkit/sph/particles.hpp"
 
 namespace craterkit::sph {
@@ -93,6 +94,10 @@ struct RateWorkspace {
   std::vector<double> volume;           // m/rho
   // Output of the pair pass: pairs with r < h_i + h_j per particle (drives the smoothing length).
   std::vector<std::uint32_t> neighbour_count;
+  // Output of the pair pass: h_i / (c_i + 1.2 (alpha_i c_i + beta_i max_j |mu_ij|)) per particle, s (the
+  // Courant time before the factor C; +infinity for fixed and ejected particles). Block time steps
+  // (block_time_steps.hpp) give each particle its own step from it.
+  std::vector<double> signal_time;
 };
 
 struct RateSummary {
@@ -108,6 +113,11 @@ struct RateSummary {
 // workspace.neighbour_count.
 RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                           RateWorkspace& workspace, VelocityGradients* gradients = nullptr);
+// The same for the selected particles only (block time steps): every other particle's rates, neighbour
+// count and signal time are left as they were; the neighbours j of a selected particle are all particles.
+RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                          RateWorkspace& workspace, const ParticleSelection& selection,
+                          VelocityGradients* gradients = nullptr);
 
 [[nodiscard]] std::string_view viscosity_switch_name(ViscositySwitch s) noexcept;
 
