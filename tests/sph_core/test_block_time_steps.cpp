@@ -1,5 +1,6 @@
 // Block time steps (block_time_steps.hpp): the level rule, the schedule of a block (every particle
-// takes 2^level steps that tile the block, no particle more than two levels coarser than a neighbour),
+// takes 2^level steps that tile the block, no particle more than block_neighbour_levels coarser than a
+// neighbour),
 // and the schedule on a chain whose one particle needs a short step.
 #include <gtest/gtest.h>
 
@@ -51,8 +52,9 @@ TEST(BlockSchedule, NeighbourRuleAndEveryStepTilesTheBlock) {
   BlockSchedule s;
   s.start(1.0, step, flags, n, lists);
   EXPECT_EQ(s.finest_level(), 6);
-  // Levels fall by two per hop away from particle 3: 6, 4, 2, 0.
-  const std::vector<int> expected{0, 2, 4, 6, 4, 2, 0, 0, 0, 0, 0};
+  // Levels fall by block_neighbour_levels (one) per hop away from particle 3.
+  ASSERT_EQ(block_neighbour_levels, 1);
+  const std::vector<int> expected{3, 4, 5, 6, 5, 4, 3, 2, 1, 0, 0};
   std::vector<int> activations(n, 0);
   std::vector<double> elapsed(n, 0.0);
   double time = 0.0;
