@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "craterkit/sph/mirror_image.hpp"
 #include "craterkit/sph/neighbour_search.hpp"
