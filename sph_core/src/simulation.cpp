@@ -108,6 +108,7 @@ void Simulation::configure() {
   rate_options_.viscosity = config_.viscosity;
   rate_options_.gravity = config_.run.gravity;
   rate_options_.period = periods(problem_.box);
+  rate_options_.mirror = mirror_planes(problem_.box);
   rate_options_.solid = false;
   porous_ = false;
   for (const auto& m : problem_.materials) {
@@ -245,7 +246,7 @@ void Simulation::evaluate_rates() {
   if (config_.density == DensityMethod::summation) {
     auto scope = timers_.measure("density");
     compute_summation_density(p, PairList{lists_.offsets, lists_.neighbours}, config_.kernel,
-                              rate_options_.period);
+                              rate_options_.period, rate_options_.mirror);
   }
   update_equation_of_state();
   {
