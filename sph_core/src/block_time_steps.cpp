@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "craterkit/sph/mirror_image.hpp"
+
 namespace craterkit::sph {
 
 int block_level(double block, double step) {
@@ -33,7 +35,8 @@ void check_level(int level, double block, double step) {
 
 int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists) const {
   int highest = 0;
-  for (const std::uint32_t j : lists.of(i)) {
+  for (const std::uint32_t entry : lists.of(i)) {
+    const std::size_t j = neighbour_index(entry);  // a mirror image has its source's level
     if (scheduled_[j] != 0) highest = std::max(highest, int(level_[j]));
   }
   return highest - block_neighbour_levels;
@@ -167,7 +170,8 @@ void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLi
   for (const std::uint32_t i : active_) {
     const int floor = int(level_[i]) - block_neighbour_levels;
     if (floor <= 0) continue;
-    for (const std::uint32_t j : lists.of(i)) {
+    for (const std::uint32_t entry : lists.of(i)) {
+      const std::size_t j = neighbour_index(entry);
       if (scheduled_[j] == 0 || int(level_[j]) >= floor || end_tick_[j] <= tick_) continue;
       const std::uint64_t step = std::uint64_t{1} << (finest_ - floor);
       const std::uint64_t end = (tick_ / step + 1) * step;

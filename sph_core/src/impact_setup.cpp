@@ -356,11 +356,15 @@ ImpactScenario make_impact(const ImpactSetup& s, double eta, double alpha,
   }
   summary.total_particles = p.size();
 
-  // Open box (no periodic axis): the bounding box of the set-up, for reference only.
-  const double low = s.symmetry == DomainSymmetry::quarter ? 0.0 : -R;
+  // Open box (no periodic axis): the bounding box of the set-up, for reference only, except that the
+  // quarter domain's planes x = 0 and y = 0 are mirror planes (the engine's neighbour search adds the
+  // mirror images of the missing three quarters, mirror_image.hpp).
+  const bool quarter = s.symmetry == DomainSymmetry::quarter;
+  const double low = quarter ? 0.0 : -R;
   problem.box.lower = {low, low, -R};
   problem.box.upper = {R, R, std::max(R, c[2] + summary.model_radius)};
   problem.box.periodic = {false, false, false};
+  problem.box.mirror = {quarter, quarter, false};
   scenario.summary = std::move(summary);
   return scenario;
 }
@@ -423,6 +427,7 @@ std::string describe_impact(const ImpactSummary& s) {
   }
   o << "impact: target R_dom = " << s.domain_radius << " m, dx = " << s.particle_spacing << " m, fixed shell "
     << s.fixed_shell_thickness << " m, symmetry " << symmetry_name(s.symmetry)
+    << (s.symmetry == DomainSymmetry::quarter ? " (mirror planes x = 0, y = 0)" : "")
     << ", rho_bulk = " << s.initial_bulk_density << " kg/m^3, c = " << s.initial_sound_speed
     << " m/s, g = " << s.gravity << " m/s^2, max lithostatic P = " << s.max_lithostatic_pressure << " Pa\n";
   o << "impact: particles " << s.total_particles << " (target " << s.target_particles << ", projectile "

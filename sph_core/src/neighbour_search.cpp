@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -38,6 +39,15 @@ template <bool Periodic>
   return gap;
 }
 
+// Resizes a build buffer to `size` without letting std::vector double its capacity (resize alone would:
+// with mirror images the buffers first hold the n particles, then n plus the images). `slack` extra
+// capacity absorbs the small changes of the image count between builds without reallocating each time.
+template <class T>
+void resize_buffer(std::vector<T>& v, std::size_t size, std::size_t slack) {
+  if (v.capacity() < size) v.reserve(size + slack);
+  v.resize(size);
+}
+
 }  // namespace
 
 NeighbourSearch::NeighbourSearch(NeighbourSearchOptions options) : options_(options) {
@@ -58,7 +68,8 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       original_.capacity() * sizeof(std::uint32_t) + groups_.capacity() * sizeof(Group) +
       nodes_.capacity() * sizeof(Node) +
       (rank_.capacity() + group_of_.capacity() + candidates_.capacity()) * sizeof(std::uint32_t) +
-      candidate_offsets_.capacity() * sizeof(std::uint64_t);
+      candidate_offsets_.capacity() * sizeof(std::uint64_t) +
+      image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity();
   for (const auto& t : scratch_)
     bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
   return bytes;
@@ -74,6 +85,9 @@ void NeighbourSearch::release_workspace() {
   release(candidate_offsets_);
   release(candidates_);
   release(scratch_);
+  release(group_queried_);
+  release(near_planes_);
+  release(image_start_);
 }
 
 void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
@@ -81,20 +95,28 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
   if (in.y.size() != n || in.z.size() != n || in.smoothing_length.size() != n) {
     throw std::invalid_argument("neighbour search: x, y, z and smoothing_length must have the same length");
   }
-  if (n >= std::numeric_limits<std::uint32_t>::max()) {
-    throw std::invalid_argument("neighbour search: more than 2^32-2 particles");
+  if (n > max_search_particles) {
+    throw std::invalid_argument("neighbour search: " + std::to_string(n) +
+                                " particles, more than 2^29 (list entries keep 3 bits for mirror images)");
   }
   for (int a = 0; a < 3; ++a) {
     if (box.periodic[a] && !(box.edge(a) > 0 && std::isfinite(box.edge(a)))) {
       throw std::invalid_argument("neighbour search: periodic axis " + std::to_string(a) +
                                   " needs upper > lower, got edge " + std::to_string(box.edge(a)));
     }
+    if (box.mirror[a] && box.periodic[a]) {
+      throw std::invalid_argument("neighbour search: axis " + std::to_string(a) +
+                                  " cannot be both periodic and mirrored");
+    }
+    if (box.mirror[a] && !std::isfinite(box.lower[a])) {
+      throw std::invalid_argument("neighbour search: the mirror plane of axis " + std::to_string(a) +
+                                  " (lower = " + std::to_string(box.lower[a]) + ") must be finite");
+    }
   }
+  particles_ = n;
   xs_.resize(n);
   ys_.resize(n);
   zs_.resize(n);
-  hs_.resize(n);
-  original_.resize(n);
   keyed_.resize(n);
 
   // Wrapped positions (periodic axes) into the sorted-copy arrays, unsorted for now; h_max and validity.
@@ -106,6 +128,7 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
     xs_[i] = wrap_position(box, 0, in.x[i]);
     ys_[i] = wrap_position(box, 1, in.y[i]);
     zs_[i] = wrap_position(box, 2, in.z[i]);
+    keyed_[i].second = static_cast<std::uint32_t>(i);  // the list entry of a particle: its index
     const double h = in.smoothing_length[i];
     h_max = std::max(h_max, h);
     h_min = std::min(h_min, h);
@@ -123,24 +146,94 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
                                   ") must exceed 2 (1 + skin) (h_i + h_j) = " + std::to_string(2.0 * reach));
     }
   }
+  if (box.any_mirror()) add_mirror_images(in, box, h_max);  // appended after the n particles
+  const std::size_t entries = xs_.size();
+  const std::size_t slack = (entries - n) / 4;  // 0 without mirrors
+  resize_buffer(hs_, entries, slack);
+  resize_buffer(original_, entries, slack);
   const CurveCube cube = bounding_cube(xs_, ys_, zs_);  // also rejects non-finite positions
 
-  // The keys of curve_order(): particles sorted by the engine are found sorted and not re-sorted.
+  // The keys of curve_order(): particles sorted by the engine are found sorted and not re-sorted (without
+  // mirrors; with mirrors the images change the cube and the order is sorted afresh).
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    keyed_[i] = {morton_key(cube, xs_[i], ys_[i], zs_[i]), static_cast<std::uint32_t>(i)};
-  }
+  for (std::size_t k = 0; k < entries; ++k) keyed_[k].first = morton_key(cube, xs_[k], ys_[k], zs_[k]);
   sort_keyed_indices(keyed_);
 
-  // Sorted copies, recomputed from the input in sorted order (no scratch array needed).
+  // Sorted copies, recomputed from the input in sorted order (no scratch array needed); images reflected
+  // exactly as the pair loops reflect them (MirrorImage::position), so both see the same distances.
+  const MirrorPlanes planes = mirror_planes(box);
 #pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::uint32_t i = keyed_[k].second;
-    original_[k] = i;
-    xs_[k] = wrap_position(box, 0, in.x[i]);
-    ys_[k] = wrap_position(box, 1, in.y[i]);
-    zs_[k] = wrap_position(box, 2, in.z[i]);
+  for (std::size_t k = 0; k < entries; ++k) {
+    const std::uint32_t entry = keyed_[k].second;
+    const MirrorImage image = mirror_image(entry);
+    const std::size_t i = image.index;
+    original_[k] = entry;
+    xs_[k] = image.position(0, planes, wrap_position(box, 0, in.x[i]));
+    ys_[k] = image.position(1, planes, wrap_position(box, 1, in.y[i]));
+    zs_[k] = image.position(2, planes, wrap_position(box, 2, in.z[i]));
     hs_[k] = in.smoothing_length[i];
+  }
+}
+
+// Which particles get images: i within reach of the plane of mirrored axis a, i.e. x_a - L_a <
+// (1 + s)(h_i + h_max) + beyond_a, where beyond_a >= 0 is how far the deepest particle has crossed that
+// plane (normally 0: particles stay on their side). Exact: for j not imaged along a and any particle i,
+// the image distance along a is |(x_i - L) + (x_j - L)| >= -beyond_a + (1 + s)(h_j + h_max) + beyond_a
+// >= (1 + s)(h_i + h_j), so the pair (i, image of j) is not within reach; a corner image needs both of
+// its axes within reach. The band is widened by a relative 1e-12 so that the rounding of 2 L - x_j
+// cannot drop a pair at the very edge of the reach. Each particle gets one image per nonempty subset of
+// its near axes (x, y and the corner xy for a quarter domain), written after the n particles in index
+// order (deterministic).
+void NeighbourSearch::add_mirror_images(const NeighbourInput& in, const Box& box, double h_max) {
+  const std::size_t n = particles_;
+  const double grow = 1.0 + options_.skin;
+  const std::array<bool, 3> mirror = box.mirror;
+  const std::array<double, 3> plane = box.lower;
+  double beyond_x = 0.0, beyond_y = 0.0, beyond_z = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : beyond_x, beyond_y, beyond_z)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mirror[0]) beyond_x = std::max(beyond_x, plane[0] - xs_[i]);
+    if (mirror[1]) beyond_y = std::max(beyond_y, plane[1] - ys_[i]);
+    if (mirror[2]) beyond_z = std::max(beyond_z, plane[2] - zs_[i]);
+  }
+  near_planes_.resize(n);
+  image_start_.resize(n + 1);
+  image_start_[0] = 0;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double reach = grow * (in.smoothing_length[i] + h_max) * (1.0 + 1e-12);
+    unsigned near = 0;
+    if (mirror[0] && xs_[i] - plane[0] < reach + beyond_x) near |= 1u;
+    if (mirror[1] && ys_[i] - plane[1] < reach + beyond_y) near |= 2u;
+    if (mirror[2] && zs_[i] - plane[2] < reach + beyond_z) near |= 4u;
+    near_planes_[i] = static_cast<std::uint8_t>(near);
+    image_start_[i + 1] = (1u << std::popcount(near)) - 1;  // nonempty subsets of `near`
+  }
+  for (std::size_t i = 0; i < n; ++i) image_start_[i + 1] += image_start_[i];
+  const std::uint64_t entries = std::uint64_t{n} + image_start_[n];
+  if (entries >= std::numeric_limits<std::uint32_t>::max()) {
+    throw std::invalid_argument("neighbour search: " + std::to_string(entries) +
+                                " particles and mirror images, more than 2^32-2");
+  }
+  const std::size_t slack = image_start_[n] / 4;
+  resize_buffer(xs_, entries, slack);
+  resize_buffer(ys_, entries, slack);
+  resize_buffer(zs_, entries, slack);
+  resize_buffer(keyed_, entries, slack);
+  const MirrorPlanes planes = mirror_planes(box);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned near = near_planes_[i];
+    std::size_t at = n + image_start_[i];
+    for (unsigned bits = 1; bits < 8; ++bits) {
+      if ((bits & ~near) != 0) continue;
+      const MirrorImage image{i, bits};
+      xs_[at] = image.position(0, planes, xs_[i]);
+      ys_[at] = image.position(1, planes, ys_[i]);
+      zs_[at] = image.position(2, planes, zs_[i]);
+      keyed_[at].second = neighbour_entry(static_cast<std::uint32_t>(i), bits);
+      ++at;
+    }
   }
 }
 
@@ -180,6 +273,7 @@ void NeighbourSearch::make_octree() {
   const std::size_t n = keyed_.size();
   groups_.clear();
   nodes_.clear();
+  group_queried_.clear();
   if (n == 0) return;
   const std::size_t leaf_size = options_.leaf_size;
   // Depth-first construction over the sorted keys: a node of level L holds keys sharing their top 3L bits.
@@ -207,14 +301,17 @@ void NeighbourSearch::make_octree() {
                   0.0,
                   f.begin,
                   f.end};
+      bool queried = false;
       for (std::uint32_t k = f.begin; k < f.end; ++k) {
         group.lower = {std::min(group.lower[0], xs_[k]), std::min(group.lower[1], ys_[k]),
                        std::min(group.lower[2], zs_[k])};
         group.upper = {std::max(group.upper[0], xs_[k]), std::max(group.upper[1], ys_[k]),
                        std::max(group.upper[2], zs_[k])};
         group.h_max = std::max(group.h_max, hs_[k]);
+        queried = queried || mirror_bits(original_[k]) == 0;
       }
       groups_.push_back(group);
+      group_queried_.push_back(queried ? 1 : 0);
       node = {group.lower, group.upper, group.h_max, 0, std::int32_t(g)};
     } else {
       constexpr double inf = std::numeric_limits<double>::infinity();
@@ -284,7 +381,8 @@ void NeighbourSearch::candidates_octree(std::size_t g, const Box& box,
 
 template <bool Periodic>
 void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
-  const std::size_t n = xs_.size();
+  const std::size_t n = particles_;        // lists for the real particles only
+  const std::size_t entries = xs_.size();  // particles and mirror images in the tree
   const double grow = 1.0 + options_.skin;
   const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -292,7 +390,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
                                    box.periodic[1] ? 0.5 * edge[1] : inf,
                                    box.periodic[2] ? 0.5 * edge[2] : inf};
   rank_.resize(n);
-  group_of_.resize(n);
+  resize_buffer(group_of_, entries, (entries - n) / 4);
   const double* xs = xs_.data();
   const double* ys = ys_.data();
   const double* zs = zs_.data();
@@ -300,7 +398,9 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
 #pragma omp parallel
   {
 #pragma omp for schedule(static) nowait
-    for (std::size_t k = 0; k < n; ++k) rank_[original_[k]] = std::uint32_t(k);
+    for (std::size_t k = 0; k < entries; ++k) {
+      if (mirror_bits(original_[k]) == 0) rank_[original_[k]] = std::uint32_t(k);
+    }
 #pragma omp for schedule(static)
     for (std::size_t g = 0; g < groups_.size(); ++g) {
       for (std::uint32_t k = groups_[g].begin; k < groups_[g].end; ++k) group_of_[k] = std::uint32_t(g);
@@ -313,7 +413,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
   const std::size_t group_count = groups_.size();
   const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
     out.clear();
-    candidates_octree<Periodic>(g, box, out);
+    if (group_queried_[g]) candidates_octree<Periodic>(g, box, out);  // images alone are never queried
   };
   candidate_offsets_.resize(group_count + 1);
   candidate_offsets_[0] = 0;
@@ -340,6 +440,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
 
   // Neighbours of sorted particle k written to out[0..]; returns their number, or `room` + 1 when they
   // might not fit in `room` entries (the test writes every candidate before deciding whether to keep it).
+  // Only the identical entry is dropped: a particle near a mirror plane keeps its own image.
   const auto gather = [&](std::uint32_t k, std::uint32_t* out, std::size_t room) -> std::size_t {
     const std::uint32_t g = group_of_[k];
     const double xi = xs[k], yi = ys[k], zi = zs[k], hi = hs[k];
@@ -501,15 +602,18 @@ void NeighbourSearch::build(const NeighbourInput& input, const Box& box, Neighbo
 }
 
 bool NeighbourSearch::needs_rebuild(const NeighbourInput& input) const {
-  const std::size_t n = xs_.size();
+  const std::size_t n = particles_;
   if (!built_ || input.x.size() != n || input.y.size() != n || input.z.size() != n ||
       input.smoothing_length.size() != n) {
     return true;
   }
   const double skin = options_.skin;
+  const std::size_t entries = xs_.size();
   bool moved_too_far = false;
+  // The real particles only: an image moves exactly as its source does (header).
 #pragma omp parallel for schedule(static) reduction(|| : moved_too_far)
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = 0; k < entries; ++k) {
+    if (mirror_bits(original_[k]) != 0) continue;
     const std::uint32_t i = original_[k];
     const auto d = displacement(box_, input.x[i], input.y[i], input.z[i], xs_[k], ys_[k], zs_[k]);
     const double moved = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);

@@ -48,7 +48,7 @@ inline bool invert3(const double m[9], double inv[9]) noexcept {
   return true;
 }
 
-template <class Kernel, bool solid>
+template <class Kernel, bool solid, bool mirrored>
 RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
                        RateWorkspace& workspace, VelocityGradients* gradients,
                        const ParticleSelection& selection) {
@@ -97,6 +97,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   const double hy = Ly > 0.0 ? 0.5 * Ly : inf;
   const double hz = Lz > 0.0 ? 0.5 * Lz : inf;
   const double gx_body = options.gravity[0], gy_body = options.gravity[1], gz_body = options.gravity[2];
+  const MirrorPlanes planes = options.mirror;
 
   double min_signal_time = inf;
   std::uint64_t interacting = 0;
@@ -145,10 +146,13 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         0.0;  // S_i/rho_i^2 : sum m_j (v_j - v_i) (x) grad W  (= (1/rho_i) S_i : uncorrected grad v)
 
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
-      const std::size_t j = neighbours[k];
-      const double dx = wrap(xi - x[j], Lx, hx);
-      const double dy = wrap(yi - y[j], Ly, hy);
-      const double dz = wrap(zi - z[j], Lz, hz);
+      // The neighbour, or its mirror image: position, velocity and deviatoric stress of j mapped to the
+      // image (without mirror planes bits is the constant 0 and the mapping compiles away).
+      const MirrorImage image = mirror_image<mirrored>(neighbours[k]);
+      const std::size_t j = image.index;
+      const double dx = wrap(xi - image.position(0, planes, x[j]), Lx, hx);
+      const double dy = wrap(yi - image.position(1, planes, y[j]), Ly, hy);
+      const double dz = wrap(zi - image.position(2, planes, z[j]), Lz, hz);
       const double r2 = dx * dx + dy * dy + dz * dz;
       const double hsum = hi + h[j];
       if (r2 >= hsum * hsum || r2 <= 0.0) continue;
@@ -157,7 +161,8 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       const double hbar = 0.5 * hsum;
       const double dwdr_over_r = Kernel::derivative(r, hbar) / r;
       const double gx = dx * dwdr_over_r, gy = dy * dwdr_over_r, gz = dz * dwdr_over_r;  // grad_i W_ij
-      const double dvx = vxi - vx[j], dvy = vyi - vy[j], dvz = vzi - vz[j];
+      const double dvx = vxi - image.vector(0, vx[j]), dvy = vyi - image.vector(1, vy[j]),
+                   dvz = vzi - image.vector(2, vz[j]);
       const double v_dot_g = dvx * gx + dvy * gy + dvz * gz;
       const double v_dot_x = dvx * dx + dvy * dy + dvz * dz;
       const double mj = mass[j];
@@ -188,8 +193,9 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         const double sigx = sixx * gx + sixy * gy + sixz * gz;
         const double sigy = sixy * gx + siyy * gy + siyz * gz;
         const double sigz = sixz * gx + siyz * gy + sizz * gz;
-        const double jxx = sxx[j] * inv_rho2j, jxy = sxy[j] * inv_rho2j, jxz = sxz[j] * inv_rho2j;
-        const double jyy = syy[j] * inv_rho2j, jyz = syz[j] * inv_rho2j;
+        const double jxx = sxx[j] * inv_rho2j, jxy = image.shear(0, 1, sxy[j]) * inv_rho2j,
+                     jxz = image.shear(0, 2, sxz[j]) * inv_rho2j;
+        const double jyy = syy[j] * inv_rho2j, jyz = image.shear(1, 2, syz[j]) * inv_rho2j;
         const double jzz = -(jxx + jyy);
         ax += mj * (sigx + jxx * gx + jxy * gy + jxz * gz);
         ay += mj * (sigy + jxy * gx + jyy * gy + jyz * gz);
@@ -278,8 +284,12 @@ RateSummary compute_rates(Particles& particles, const PairList& pairs, const Rat
   if (gradients != nullptr) gradients->resize(particles.size());
   return with_kernel(options.kernel, [&](auto kernel) {
     using K = decltype(kernel);
-    return options.solid ? rates_impl<K, true>(particles, pairs, options, workspace, gradients, selection)
-                         : rates_impl<K, false>(particles, pairs, options, workspace, gradients, selection);
+    if (options.mirror.any()) {
+      return options.solid ? rates_impl<K, true, true>(particles, pairs, options, workspace, gradients, selection)
+                           : rates_impl<K, false, true>(particles, pairs, options, workspace, gradients, selection);
+    }
+    return options.solid ? rates_impl<K, true, false>(particles, pairs, options, workspace, gradients, selection)
+                         : rates_impl<K, false, false>(particles, pairs, options, workspace, gradients, selection);
   });
 }
 

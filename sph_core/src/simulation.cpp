@@ -110,6 +110,7 @@ void Simulation::configure() {
   rate_options_.viscosity = config_.viscosity;
   rate_options_.gravity = config_.run.gravity;
   rate_options_.period = periods(problem_.box);
+  rate_options_.mirror = mirror_planes(problem_.box);
   rate_options_.solid = false;
   porous_ = false;
   for (const auto& m : problem_.materials) {
@@ -260,7 +261,7 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
   if (config_.density == DensityMethod::summation) {
     auto scope = timers_.measure("density");
     compute_summation_density(p, PairList{lists_.offsets, lists_.neighbours}, config_.kernel,
-                              rate_options_.period);
+                              rate_options_.period, rate_options_.mirror);
   }
   update_equation_of_state(state_for);
   {
@@ -302,8 +303,8 @@ ParticleSelection Simulation::neighbourhood_of(std::span<const std::uint32_t> pa
   for (std::int64_t kk = 0; kk < count; ++kk) {
     const std::size_t i = particles[static_cast<std::size_t>(kk)];
     std::atomic_ref<std::uint8_t>(mark[i]).store(1, std::memory_order_relaxed);
-    for (const std::uint32_t j : lists_.of(i)) {
-      std::atomic_ref<std::uint8_t>(mark[j]).store(1, std::memory_order_relaxed);
+    for (const std::uint32_t entry : lists_.of(i)) {
+      std::atomic_ref<std::uint8_t>(mark[neighbour_index(entry)]).store(1, std::memory_order_relaxed);
     }
   }
   needed_list_.clear();

@@ -14,8 +14,9 @@ inline double minimum_image(double d, double period, double half) noexcept {
   return d;
 }
 
-template <class Kernel>
-void summation_impl(Particles& p, const PairList& pairs, const std::array<double, 3>& period) {
+template <class Kernel, bool mirrored>
+void summation_impl(Particles& p, const PairList& pairs, const std::array<double, 3>& period,
+                    const MirrorPlanes& planes) {
   const auto n = static_cast<std::int64_t>(p.size());
   const double* x = p.x.data();
   const double* y = p.y.data();
@@ -37,10 +38,11 @@ void summation_impl(Particles& p, const PairList& pairs, const std::array<double
     const double xi = x[i], yi = y[i], zi = z[i], hi = h[i];
     double sum = mass[i] * Kernel::value(0.0, hi);
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
-      const std::size_t j = neighbours[k];
-      const double dx = minimum_image(xi - x[j], Lx, hx);
-      const double dy = minimum_image(yi - y[j], Ly, hy);
-      const double dz = minimum_image(zi - z[j], Lz, hz);
+      const MirrorImage image = mirror_image<mirrored>(neighbours[k]);  // the neighbour, or its mirror image
+      const std::size_t j = image.index;
+      const double dx = minimum_image(xi - image.position(0, planes, x[j]), Lx, hx);
+      const double dy = minimum_image(yi - image.position(1, planes, y[j]), Ly, hy);
+      const double dz = minimum_image(zi - image.position(2, planes, z[j]), Lz, hz);
       const double hsum = hi + h[j];
       const double r2 = dx * dx + dy * dy + dz * dz;
       if (r2 >= hsum * hsum) continue;  // beyond the pair support (lists may carry a skin)
@@ -53,8 +55,14 @@ void summation_impl(Particles& p, const PairList& pairs, const std::array<double
 }  // namespace
 
 void compute_summation_density(Particles& particles, const PairList& pairs, KernelType kernel,
-                               const std::array<double, 3>& period) {
-  with_kernel(kernel, [&](auto k) { summation_impl<decltype(k)>(particles, pairs, period); });
+                               const std::array<double, 3>& period, const MirrorPlanes& mirror) {
+  with_kernel(kernel, [&](auto k) {
+    if (mirror.any()) {
+      summation_impl<decltype(k), true>(particles, pairs, period, mirror);
+    } else {
+      summation_impl<decltype(k), false>(particles, pairs, period, mirror);
+    }
+  });
 }
 
 std::string_view density_method_name(DensityMethod method) noexcept {

@@ -354,6 +354,13 @@ TEST(ImpactSetup, QuarterSymmetryIsAQuarterOfTheFullDomain) {
   }
   EXPECT_NEAR(4.0 * mass, quarter.summary.model_mass, 1e-12);
   EXPECT_EQ(impact_run_attributes(quarter.summary, KernelType::cubic_spline).texts.at("symmetry"), "quarter");
+  // The planes x = 0 and y = 0 are mirror planes of the quarter's box, and only of the quarter's.
+  const Box& box = quarter.problem.box;
+  EXPECT_TRUE(box.mirror[0] && box.mirror[1] && !box.mirror[2]);
+  EXPECT_EQ(box.lower[0], 0.0);
+  EXPECT_EQ(box.lower[1], 0.0);
+  EXPECT_FALSE(full.problem.box.any_mirror());
+  EXPECT_NE(describe_impact(quarter.summary).find("mirror planes x = 0, y = 0"), std::string::npos);
   // Oblique impacts and boulders break the mirror symmetry.
   s.impact_angle = 10.0;
   EXPECT_THROW((void)make_impact(s, eta, 1.0, ryugu_gravity), InputError);

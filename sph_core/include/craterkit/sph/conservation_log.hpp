@@ -4,7 +4,9 @@
 // Sums run over ALL particles, fixed (boundary) and ejected ones included: ejected particles still
 // carry mass, momentum and energy, so removing them from the hydrodynamics must not show up as a
 // loss. Fixed particles contribute their mass, their (normally zero) velocity and their internal and
-// potential energy; momentum is not conserved in runs with fixed walls, which absorb it.
+// potential energy; momentum is not conserved in runs with fixed walls, which absorb it. With mirror
+// planes (a quarter-domain impact) the sums are those of the simulated quarter: energy is conserved,
+// momentum normal to a plane is not (the plane pushes back).
 // Sums are taken in fixed blocks combined in a fixed order with compensated (Neumaier) summation, so
 // the result does not depend on the number of OpenMP threads.
 #include <array>

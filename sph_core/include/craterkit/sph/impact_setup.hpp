@@ -12,8 +12,9 @@
 //    boulder is (boulders may stick out of the surface), also within |x| < R_dom.
 //  - Fixed shell: every target or boulder node with |x| > R_dom - shell_thickness is flagged
 //    particle_fixed (shell_thickness default: 2 h = 2 eta dx, the kernel support, so a moving particle
-//    never sees the missing material beyond the domain). The mirror planes of the quarter domain are not
-//    a shell: mirror boundaries are the engine's work (see `symmetry` in the run attributes).
+//    never sees the missing material beyond the domain). The planes x = 0 and y = 0 of the quarter domain
+//    are not a shell: they are mirror planes of the box (Box::mirror), whose images the neighbour search
+//    generates (mirror_image.hpp); `symmetry` in the run attributes tells the crater measurement.
 //  - Boulders: a node inside a boulder's Shape (shapes.hpp) gets the boulder's material; the first boulder
 //    in the list wins where two overlap. Each boulder has its own entry in the material table (ids 2, 3,
 //    ...: the crater measurement tracks boulders by material id).

@@ -30,6 +30,12 @@
 // Sedov shock radius from -1.7 % to -3.2 % at 50^3 (over the 3 % bound), so it is not used. Neither
 // form was the cause of the wrong Sod star state: that was the smoothing length (docs/validation.md).
 //
+// Mirror planes (RateOptions::mirror, mirror_image.hpp): a list entry may be a neighbour's mirror image,
+// whose position, velocity and deviatoric stress the pair body reflects before using them; nothing else
+// changes. The sums over i then run over the real particles of a symmetric system, so momentum normal to a
+// plane is not conserved by the sum over the real particles (the plane pushes back), the components along
+// the planes and the energy are.
+//
 // Momentum is conserved pairwise: the force term for (i, j) is built from expressions symmetric in
 // i and j (hbar, cbar, rhobar, P_i/rho_i^2 + P_j/rho_j^2) times grad_i W_ij = -grad_j W_ji, so the
 // pair forces cancel to round-off.
@@ -41,6 +47,7 @@
 #include <vector>
 
 #include "craterkit/sph/kernel.hpp"
+#include "craterkit/sph/mirror_image.hpp"
 #include "craterkit/sph/particle_selection.hpp"
 #include "craterkit/sph/particles.hpp"
 
@@ -67,13 +74,17 @@ struct RateOptions {
   std::array<double, 3> gravity{0.0, 0.0, 0.0};  // constant body force, m/s^2
   // Period along each axis (upper - lower) for minimum-image displacements; 0 = not periodic.
   std::array<double, 3> period{0.0, 0.0, 0.0};
+  // Symmetry planes (mirror_planes(box)): list entries with image bits are the neighbour reflected
+  // across them (mirror_image.hpp). Must be the planes the lists were built with.
+  MirrorPlanes mirror{};
   // Deviatoric stress terms in momentum and energy, and the corrected velocity gradient. Off for
   // fluids: the pair loop then carries no stress work at all.
   bool solid = false;
 };
 
 // CSR neighbour lists: the neighbours of i are neighbours[offsets[i] .. offsets[i+1]). Entries may
-// include pairs slightly beyond h_i + h_j (a search skin); the pair body drops them.
+// include pairs slightly beyond h_i + h_j (a search skin); the pair body drops them. An entry is a particle
+// index with mirror-image bits (mirror_image.hpp; zero without mirror planes).
 struct PairList {
   std::span<const std::uint64_t> offsets;
   std::span<const std::uint32_t> neighbours;

@@ -22,9 +22,10 @@ namespace craterkit::sph {
 enum class DensityMethod { continuity, summation };
 
 // Overwrites the density of every particle that is neither fixed nor ejected. period: box edge along
-// each periodic axis (0: open), for minimum-image distances, as RateOptions::period.
+// each periodic axis (0: open), for minimum-image distances, as RateOptions::period; mirror: the symmetry
+// planes the lists were built with, as RateOptions::mirror (image entries are reflected across them).
 void compute_summation_density(Particles& particles, const PairList& pairs, KernelType kernel,
-                               const std::array<double, 3>& period);
+                               const std::array<double, 3>& period, const MirrorPlanes& mirror = {});
 
 [[nodiscard]] std::string_view density_method_name(DensityMethod method) noexcept;
 
