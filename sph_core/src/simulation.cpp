@@ -250,6 +250,19 @@ void Simulation::update_neighbours() {
   }
 }
 
+void Simulation::update_neighbours(std::span<const std::uint32_t> queries) {
+  auto& p = problem_.particles;
+  auto scope = timers_.measure("neighbours");
+  const NeighbourInput input{std::span<const double>(p.x).first(active_),
+                             std::span<const double>(p.y).first(active_),
+                             std::span<const double>(p.z).first(active_),
+                             std::span<const double>(p.smoothing_length).first(active_)};
+  const std::uint64_t before = search_.restructures();
+  search_.build_for(input, problem_.box, queries, lists_, force_rebuild_);
+  rebuilds_ += search_.restructures() - before;
+  force_rebuild_ = false;
+}
+
 void Simulation::evaluate_rates() {
   const auto all = ParticleSelection::all(problem_.particles.size());
   update_neighbours();
@@ -322,7 +335,11 @@ void Simulation::advance_block(double block) {
     auto scope = timers_.measure("integration");
     begin_step(p, integrator_workspace_, all);
   }
-  update_neighbours();
+  // Lists of every particle at the start (the neighbour rule of the schedule), then of the active ones at
+  // each substep (NeighbourSearch::build_for: the octree refit, not rebuilt).
+  all_indices_.resize(active_);
+  for (std::size_t i = 0; i < active_; ++i) all_indices_[i] = static_cast<std::uint32_t>(i);
+  update_neighbours(all_indices_);
   {
     auto scope = timers_.measure("schedule");
     schedule_.start(block, p.time_step, p.flags, active_, lists_);
@@ -338,7 +355,7 @@ void Simulation::advance_block(double block) {
       auto scope = timers_.measure("integration");
       drift(p, dt, problem_.box, config_.smoothing);
     }
-    update_neighbours();
+    update_neighbours(schedule_.active());
     const auto active = ParticleSelection::listed(schedule_.active());
     ParticleSelection needed = all;
     {
