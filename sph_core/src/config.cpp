@@ -167,6 +167,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       s.fail("alpha_min", "value " + format_number(v.alpha_min) + " exceeds viscosity.alpha");
     v.decay_factor = s.number("decay_factor", v.decay_factor, 0.0, 10.0, true);
     v.epsilon = s.number("epsilon", v.epsilon, 0.0, 1.0, true);
+    v.balsara = s.boolean("balsara", v.balsara);
     s.finish();
   }
   {

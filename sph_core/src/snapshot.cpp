@@ -52,6 +52,7 @@ std::string field_unit(std::string_view field_name) {
       {"total_strain", "1"},
       {"distention", "1"},
       {"viscosity_alpha", "1"},
+      {"balsara", "1"},
       {"acceleration_x", "m/s^2"},
       {"acceleration_y", "m/s^2"},
       {"acceleration_z", "m/s^2"},

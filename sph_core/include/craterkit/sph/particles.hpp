@@ -52,6 +52,8 @@ struct Particles {
 
   // Artificial viscosity coefficient per particle (for switches; constant alpha when none).
   std::vector<double> viscosity_alpha;
+  // Balsara factor f in [0, 1] of the viscosity (rates.hpp), from the last rate evaluation; 1 without.
+  std::vector<double> balsara;
 
   // Time derivatives from the last rate evaluation (rates.hpp). They are state, not scratch: the
   // second-order integrator (integrator.hpp) reuses them in the next step, so checkpoints must
@@ -106,6 +108,7 @@ struct Particles {
     visit(std::string_view{"sound_speed"}, sound_speed);
     visit(std::string_view{"distention"}, distention);
     visit(std::string_view{"viscosity_alpha"}, viscosity_alpha);
+    visit(std::string_view{"balsara"}, balsara);
     visit(std::string_view{"acceleration_x"}, acceleration_x);
     visit(std::string_view{"acceleration_y"}, acceleration_y);
     visit(std::string_view{"acceleration_z"}, acceleration_z);

@@ -66,6 +66,10 @@ struct ArtificialViscosity {
   double alpha_min = 0.1;     // floor the switch decays to away from shocks
   double decay_factor = 0.2;  // l in the decay time tau = h / (l c) of Morris & Monaghan
   double epsilon = 0.01;      // eta^2 regulariser in mu_ij = hbar v.x / (r^2 + eps hbar^2)
+  // Balsara (1995) limiter: Pi_ij times (f_i + f_j)/2, f = |div v| / (|div v| + |curl v| + 1e-4 c/h), so
+  // that shear flow (f -> 0) carries no viscosity while compression (f -> 1) keeps it. f is each
+  // particle's value from its last rate evaluation (Particles::balsara).
+  bool balsara = false;
 };
 
 struct RateOptions {
@@ -109,6 +113,9 @@ struct RateWorkspace {
   // Courant time before the factor C; +infinity for fixed and ejected particles). Block time steps
   // (block_time_steps.hpp) give each particle its own step from it.
   std::vector<double> signal_time;
+  // The Balsara factors computed by the pass (ArtificialViscosity::balsara), copied to Particles::balsara
+  // after it.
+  std::vector<double> balsara_next;
 };
 
 struct RateSummary {
