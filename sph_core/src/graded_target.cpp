@@ -17,8 +17,9 @@ namespace craterkit::sph {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-// Junction smoothing: 10 iterations at 0.1 h^2 (prototype: the largest |h sum V grad W| at the junction
-// falls from 0.22 to 0.05 after 10 and creeps back up from the band's edges after more).
+// Junction smoothing: 10 iterations at 0.1 h^2 (test_graded_target.cpp: the largest h |sum V grad W| at
+// the junction falls from 0.23-0.25 to 0.06; in the prototype it crept back up from the band's edges with
+// more iterations: 0.052 after 10, 0.066 after 40).
 constexpr int junction_smoothing_iterations = 10;
 constexpr double junction_smoothing_coefficient = 0.1;
 
