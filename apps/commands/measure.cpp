@@ -37,7 +37,10 @@ struct MeasureOptions {
 
 // Snapshot attributes the simulation records for the measurement (RunAttributes::numbers / texts).
 constexpr const char* attribute_rho_initial = "initial_bulk_density";  // kg/m^3
-constexpr const char* attribute_spacing = "particle_spacing";          // m
+constexpr const char* attribute_spacing = "particle_spacing";          // m (graded: the outer spacing)
+constexpr const char* attribute_inner_spacing = "inner_spacing";       // m, graded target's core spacing
+constexpr const char* attribute_inner_radius = "inner_radius";         // m, graded target's core radius
+constexpr const char* attribute_grading = "grading";                   // graded target's growth per spacing
 constexpr const char* attribute_kernel = "kernel";                     // "cubic_spline" | "wendland_c2"
 constexpr const char* attribute_symmetry = "symmetry";                 // "quarter": mirrored at x = 0, y = 0
 
@@ -130,6 +133,17 @@ void run_measure(const MeasureOptions& options) {
                                  options.snapshot);
   m.particle_spacing =
       resolve_number(options.spacing, attributes, attribute_spacing, "--spacing", options.snapshot);
+  // A graded target (docs/impact_setup.md "Graded resolution"): the measurement follows its local spacing,
+  // unless --spacing overrides the snapshot's resolution (then uniform at that spacing).
+  if (!options.spacing) {
+    const auto number = [&](const char* name) {
+      const auto it = attributes.numbers.find(name);
+      return it == attributes.numbers.end() ? 0.0 : it->second;
+    };
+    m.inner_spacing = number(attribute_inner_spacing);
+    m.inner_radius = number(attribute_inner_radius);
+    m.grading = number(attribute_grading);
+  }
   if (options.kernel) {
     m.kernel = parse_kernel(*options.kernel, "--kernel");
   } else if (const auto it = attributes.texts.find(attribute_kernel); it != attributes.texts.end()) {
@@ -196,7 +210,8 @@ void add_measure_command(CLI::App& parent) {
                   "Initial bulk density of the target matrix, kg/m^3 (default: snapshot attribute "
                   "initial_bulk_density)");
   sub->add_option("--spacing", options->spacing,
-                  "Initial particle spacing, m (default: snapshot attribute particle_spacing)");
+                  "Initial particle spacing, m (default: snapshot attribute particle_spacing; on a graded "
+                  "target the local spacing from inner_spacing, inner_radius and grading)");
   sub->add_option("--kernel", options->kernel,
                   "cubic_spline or wendland_c2 (default: snapshot attribute kernel, else cubic_spline)");
   sub->add_option("--centre", options->centre, "Impact point X Y on the pre-impact plane, m (default 0 0)")
@@ -204,9 +219,9 @@ void add_measure_command(CLI::App& parent) {
   sub->add_option("--max-radius", options->max_radius,
                   "Outer end of the rays, m (default: target extent - 2 h - spacing)");
   sub->add_option("--azimuths", options->azimuths, "Number of rays (multiple of 4; default 64)");
-  sub->add_option("--radial-step", options->radial_step, "Radial sample step, m (default spacing/4)");
+  sub->add_option("--radial-step", options->radial_step, "Radial sample step, m (default (local) spacing/4)");
   sub->add_option("--wall-depth", options->wall_depth,
-                  "Depth below z = 0 that marks the crater wall, m (default one spacing)");
+                  "Depth below z = 0 that marks the crater wall, m (default one (local) spacing)");
   sub->add_flag(
       "--quarter", options->quarter,
       "Quarter-domain run mirrored at x = 0 and y = 0 (default: snapshot attribute symmetry = quarter)");

@@ -27,11 +27,26 @@ constexpr int bisection_steps = 48;  // brackets of a few spacings shrink below 
 // column axis, smoothing length and mass.
 struct ColumnEntry {
   double z, r2, h, m;
+  int group;  // smoothing-length group (Column)
+};
+
+// The candidates are grouped by smoothing length (group g holds h in [2^g, 2^(g+1)) times the smallest h),
+// each group sorted by height, so that a density evaluation visits, per group, only the entries within
+// that group's own reach. On a graded target a column through the fine core also meets the deep coarse
+// particles below it, whose supports are many fine spacings tall; with one column-wide reach every
+// evaluation visited every fine particle within it (measured: 1.14 s against 0.38 s with the groups for a
+// 2 m target graded from 0.01 to 0.2 m; 2.1 against 1.8 s for sci-graded.toml). With equal smoothing
+// lengths there is one group, visited exactly as the single z-sorted list it replaces.
+struct ColumnGroup {
+  std::size_t begin = 0, end = 0;  // entries[begin, end)
+  double reach = 0.0;              // 2 * largest h in the group
 };
 
 struct Column {
-  std::vector<ColumnEntry> entries;  // sorted by z
-  double reach = 0.0;                // 2 * largest h among the entries
+  std::vector<ColumnEntry> entries;  // grouped (see ColumnGroup), each group sorted by z
+  std::vector<ColumnGroup> groups;
+  std::vector<double> heights;  // every entry's z, sorted
+  double reach = 0.0;           // 2 * largest h among the entries
 };
 
 // Non-ejected particles binned into a sparse 2-D grid of vertical columns (edge 2 h_cell). The few
@@ -114,20 +129,40 @@ class ColumnGrid {
     for (const auto& b : big_) f(b);
   }
 
-  // The candidates of the vertical line through (x, y): horizontal distance < 2 h, sorted by height.
+  // The candidates of the vertical line through (x, y): horizontal distance < 2 h, grouped by smoothing
+  // length and sorted by height within each group.
   void gather(double x, double y, Column& column) const {
     column.entries.clear();
+    column.groups.clear();
+    column.heights.clear();
     column.reach = 0.0;
+    double h_min = std::numeric_limits<double>::infinity();
     for_near(x, y, [&](const Point& pt) {
       const double dx = pt.x - x, dy = pt.y - y;
       const double r2 = dx * dx + dy * dy;
       if (r2 < 4.0 * pt.h * pt.h) {
-        column.entries.push_back({pt.z, r2, pt.h, pt.m});
+        column.entries.push_back({pt.z, r2, pt.h, pt.m, 0});
         column.reach = std::max(column.reach, 2.0 * pt.h);
+        h_min = std::min(h_min, pt.h);
       }
     });
-    std::sort(column.entries.begin(), column.entries.end(),
-              [](const ColumnEntry& a, const ColumnEntry& b) { return a.z < b.z; });
+    bool one_group = true;
+    for (ColumnEntry& e : column.entries) {
+      // h < 2 h_min is group 0 without a logarithm (all of them when the smoothing lengths are equal).
+      e.group = e.h < 2.0 * h_min ? 0 : static_cast<int>(std::floor(std::log2(e.h / h_min)));
+      one_group = one_group && e.group == 0;
+    }
+    std::sort(column.entries.begin(), column.entries.end(), [](const ColumnEntry& a, const ColumnEntry& b) {
+      return a.group < b.group || (a.group == b.group && a.z < b.z);
+    });
+    for (std::size_t k = 0; k < column.entries.size(); ++k) {
+      const ColumnEntry& e = column.entries[k];
+      if (k == 0 || e.group != column.entries[k - 1].group) column.groups.push_back({k, k, 0.0});
+      column.groups.back().end = k + 1;
+      column.groups.back().reach = std::max(column.groups.back().reach, 2.0 * e.h);
+      column.heights.push_back(e.z);
+    }
+    if (!one_group) std::sort(column.heights.begin(), column.heights.end());
   }
 
   template <class Kernel>
@@ -161,13 +196,16 @@ class ColumnGrid {
 
 template <class Kernel>
 double column_density(const Column& column, double z) {
-  const auto& e = column.entries;
-  auto it = std::lower_bound(e.begin(), e.end(), z - column.reach,
-                             [](const ColumnEntry& a, double v) { return a.z < v; });
   double rho = 0.0;
-  for (; it != e.end() && it->z < z + column.reach; ++it) {
-    const double dz = it->z - z;
-    rho += it->m * Kernel::value(std::sqrt(it->r2 + dz * dz), it->h);
+  for (const ColumnGroup& g : column.groups) {
+    const auto first = column.entries.begin() + static_cast<std::ptrdiff_t>(g.begin);
+    const auto last = column.entries.begin() + static_cast<std::ptrdiff_t>(g.end);
+    auto it =
+        std::lower_bound(first, last, z - g.reach, [](const ColumnEntry& a, double v) { return a.z < v; });
+    for (; it != last && it->z < z + g.reach; ++it) {
+      const double dz = it->z - z;
+      rho += it->m * Kernel::value(std::sqrt(it->r2 + dz * dz), it->h);
+    }
   }
   return rho;
 }
@@ -176,19 +214,19 @@ double column_density(const Column& column, double z) {
 template <class Kernel>
 double column_surface(const Column& column, double rho_crit, double step) {
   const auto& e = column.entries;
+  const auto& heights = column.heights;
   if (e.empty()) return nan;
   double top = -std::numeric_limits<double>::infinity();
   for (const auto& c : e) top = std::max(top, c.z + 2.0 * c.h);
-  const double bottom = e.front().z - column.reach;
+  const double bottom = heights.front() - column.reach;
   double z = top;  // density zero here
   while (z > bottom) {
     double below = z - step;
     // Skip empty stretches: with no candidate within reach of `below` the density is zero there.
-    auto it = std::lower_bound(e.begin(), e.end(), below + column.reach,
-                               [](const ColumnEntry& a, double v) { return a.z < v; });
-    if (it == e.begin()) return nan;  // nothing at or below: the scan is done
-    if (std::prev(it)->z <= below - column.reach) {
-      z = std::prev(it)->z + column.reach;  // zero density down to here
+    auto it = std::lower_bound(heights.begin(), heights.end(), below + column.reach);
+    if (it == heights.begin()) return nan;  // nothing at or below: the scan is done
+    if (*std::prev(it) <= below - column.reach) {
+      z = *std::prev(it) + column.reach;  // zero density down to here
       continue;
     }
     if (column_density<Kernel>(column, below) >= rho_crit) {
@@ -225,9 +263,20 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
   m.kernel = o.kernel;
   m.centre = o.centre;
   m.quarter_symmetric = o.quarter_symmetric;
-  m.radial_step = o.radial_step > 0.0 ? o.radial_step : 0.25 * o.particle_spacing;
-  m.vertical_step = o.vertical_step > 0.0 ? o.vertical_step : 0.25 * o.particle_spacing;
-  m.wall_depth = o.wall_depth > 0.0 ? o.wall_depth : o.particle_spacing;
+  // The local spacing dx(r) (graded_spacing.hpp): the particle spacing everywhere on a uniform target.
+  // Defaulted steps and tolerances follow it, so that a graded target is measured at its own resolution
+  // at every radius; the settings record their values at the centre.
+  const GradedSpacing local{o.inner_spacing, o.inner_radius, o.grading, o.particle_spacing};
+  const double spacing0 = local.at(0.0);
+  m.inner_spacing = local.graded() ? o.inner_spacing : o.particle_spacing;
+  m.inner_radius = local.graded() ? o.inner_radius : 0.0;
+  m.grading = local.graded() ? o.grading : 0.0;
+  m.radial_step = o.radial_step > 0.0 ? o.radial_step : 0.25 * spacing0;
+  m.vertical_step = o.vertical_step > 0.0 ? o.vertical_step : 0.25 * spacing0;
+  m.wall_depth = o.wall_depth > 0.0 ? o.wall_depth : spacing0;
+  const bool graded_radial = local.graded() && !(o.radial_step > 0.0);
+  const bool graded_vertical = local.graded() && !(o.vertical_step > 0.0);
+  const bool graded_wall = local.graded() && !(o.wall_depth > 0.0);
 
   // Ejecta.
   std::map<int, double> ejected_by_material;
@@ -285,10 +334,32 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
   }
 
   const std::size_t na = o.n_azimuths;
-  const auto nr = static_cast<std::size_t>(std::floor(m.max_radius / m.radial_step));
+  // Sample radii r_k, each the middle of its radial cell of width w_k: uniform (k + 1/2) dr, or on a
+  // graded target with the defaulted step, w_k = dx(inner edge of the cell) / 4.
+  std::vector<double> radii, widths;
+  if (graded_radial) {
+    for (double edge = 0.0;;) {
+      const double w = 0.25 * local.at(edge);
+      if (edge + w > m.max_radius) break;
+      radii.push_back(edge + 0.5 * w);
+      widths.push_back(w);
+      edge += w;
+    }
+  } else {
+    const auto count = static_cast<std::size_t>(std::floor(m.max_radius / m.radial_step));
+    for (std::size_t k = 0; k < count; ++k) {
+      radii.push_back((double(k) + 0.5) * m.radial_step);
+      widths.push_back(m.radial_step);
+    }
+  }
+  const std::size_t nr = radii.size();
   if (nr < 4) throw InputError("max_radius " + format_number(m.max_radius) + " m: fewer than 4 radial steps");
   const double dphi = 2.0 * std::numbers::pi / double(na);
-  auto radius = [&](std::size_t k) { return (double(k) + 0.5) * m.radial_step; };
+  auto radius = [&](std::size_t k) { return radii[k]; };
+  auto vertical_step = [&](std::size_t k) {
+    return graded_vertical ? 0.25 * local.at(radii[k]) : m.vertical_step;
+  };
+  auto wall_depth = [&](std::size_t k) { return graded_wall ? local.at(radii[k]) : m.wall_depth; };
 
   // Surface height and plane density on every sample column.
   std::vector<double> surface(na * nr), plane(na * nr);
@@ -301,7 +372,7 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
       const double phi = dphi * double(a);
       const double x = o.centre[0] + radius(k) * std::cos(phi), y = o.centre[1] + radius(k) * std::sin(phi);
       grid.gather(x, y, column);
-      surface[s] = column_surface<Kernel>(column, m.rho_crit, m.vertical_step);
+      surface[s] = column_surface<Kernel>(column, m.rho_crit, vertical_step(k));
       plane[s] = column_density<Kernel>(column, 0.0);
     }
   }
@@ -318,7 +389,7 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
     const double* rho0 = &plane[a * nr];
     std::ptrdiff_t kw = -1;
     for (std::ptrdiff_t k = std::ptrdiff_t(nr) - 1; k >= 0; --k) {
-      if (std::isfinite(zs[k]) && zs[k] < -m.wall_depth) {
+      if (std::isfinite(zs[k]) && zs[k] < -wall_depth(std::size_t(k))) {
         kw = k;
         break;
       }
@@ -375,10 +446,10 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
   }
   for (std::size_t d = 0; d < 4; ++d) {
     const RayMeasurement& ray = m.rays[direction_ray[d]];
-    if (std::isfinite(m.radii[d]) && ray.crest_height < 0.25 * o.particle_spacing) {
+    if (std::isfinite(m.radii[d]) && ray.crest_height < 0.25 * local.at(ray.crest_radius)) {
       m.warnings.push_back(
           std::string("rim crest along ") + direction_names[d] + " only " + format_number(ray.crest_height) +
-          " m above z = 0 (< spacing/4): without a rim the plane density approaches rho_crit "
+          " m above z = 0 (< local spacing/4): without a rim the plane density approaches rho_crit "
           "from below outside the wall, so the edge is ill-conditioned (up to 2 h too large)");
     }
   }
@@ -392,7 +463,9 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
     for (const double r : m.radii) var += (r - mean) * (r - mean) / 3.0;
     m.crater_radius = mean;
     m.radius_spread = std::sqrt(var);
-    m.crater_radius_uncertainty = std::sqrt(0.25 * var + 0.25 * o.particle_spacing * o.particle_spacing);
+    // The resolution term is half the local spacing at the edge (the particle spacing when uniform).
+    const double dx_edge = local.at(mean);
+    m.crater_radius_uncertainty = std::sqrt(0.25 * var + 0.25 * dx_edge * dx_edge);
   } else {
     m.crater_radius = m.crater_radius_uncertainty = m.radius_spread = nan;
   }
@@ -416,7 +489,7 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
       const double z = surface[a * nr + k];
       if (!std::isfinite(z)) continue;
       lowest = std::min(lowest, z);
-      m.volume += std::max(0.0, -z) * radius(k) * m.radial_step * dphi;
+      m.volume += std::max(0.0, -z) * radius(k) * widths[k] * dphi;
     }
   }
   m.depth = std::isfinite(lowest) ? -lowest : nan;
@@ -603,6 +676,9 @@ std::string crater_json_text(const CraterMeasurement& m, double time) {
               {"radial_step", m.radial_step},
               {"vertical_step", m.vertical_step},
               {"wall_depth", m.wall_depth},
+              {"inner_spacing", m.inner_spacing},
+              {"inner_radius", m.inner_radius},
+              {"grading", m.grading},
               {"n_azimuths", m.rays.size()},
               {"quarter_symmetric", m.quarter_symmetric}}}};
   if (std::isfinite(time)) j["time"] = time;

@@ -115,6 +115,27 @@ ImpactSetup parse_impact_setup(const toml::table& impact, const std::string& sou
   s.coupling_exponent = t.number("coupling_exponent", s.coupling_exponent, 0.0, 1.0, true);
   s.domain_radius = t.number("domain_radius", s.domain_radius, 0.0, inf, true);
   s.particle_spacing = t.number("particle_spacing", s.particle_spacing, 0.0, s.domain_radius / 8.0, true);
+  // Graded resolution (docs/impact_setup.md "Graded resolution"): particle_spacing is then the outer one.
+  s.inner_spacing = t.number("inner_spacing", s.inner_spacing, 0.0, inf);
+  if (s.inner_spacing > 0.0 && !(s.inner_spacing < s.particle_spacing)) {
+    t.fail("inner_spacing", "value " + format_number(s.inner_spacing) + " out of range: allowed (0, " +
+                                format_number(s.particle_spacing) +
+                                ") below particle_spacing, the outer spacing (0: uniform lattice)");
+  }
+  const auto grading = t.optional_number("grading", 0.0, 0.2, true);
+  const auto inner_radius = t.optional_number("inner_radius", 0.0, inf);
+  if (s.inner_spacing == 0.0 && (grading || inner_radius)) {
+    t.fail(grading ? "grading" : "inner_radius", "given but inner_spacing = 0 (uniform lattice)");
+  }
+  if (grading) s.grading = *grading;
+  if (inner_radius) {
+    s.inner_radius = *inner_radius;
+    if (s.inner_radius > 0.0 && s.inner_radius < 4.0 * s.inner_spacing * (1.0 - 1e-12)) {
+      t.fail("inner_radius", "value " + format_number(s.inner_radius) +
+                                 " out of range: at least 4 inner_spacing = " +
+                                 format_number(4.0 * s.inner_spacing) + " m (0: 8 inner_spacing)");
+    }
+  }
   s.fixed_shell_thickness =
       t.number("fixed_shell_thickness", s.fixed_shell_thickness, 0.0, s.domain_radius / 4.0);
   const std::string symmetry = t.text("symmetry", symmetry_name(s.symmetry), {"full", "quarter"});

@@ -107,4 +107,24 @@ double lithostatic_pressure_after(const Material& material, double p_top, double
   return p;
 }
 
+namespace {
+
+double adaptive_step(const Material& material, double p_top, double thickness, double g, double tolerance,
+                     int depth) {
+  const double one = lithostatic_pressure_after(material, p_top, thickness, g, 1);
+  const double two = lithostatic_pressure_after(material, p_top, thickness, g, 2);
+  if (depth >= 30 || std::abs(two - one) <= tolerance * std::abs(two)) return two;
+  const double half = 0.5 * thickness;
+  const double middle = adaptive_step(material, p_top, half, g, tolerance, depth + 1);
+  return adaptive_step(material, middle, half, g, tolerance, depth + 1);
+}
+
+}  // namespace
+
+double lithostatic_pressure_adaptive(const Material& material, double p_top, double thickness, double g,
+                                     double relative_tolerance) {
+  if (!(thickness > 0.0) || !(g > 0.0)) return p_top;
+  return adaptive_step(material, p_top, thickness, g, relative_tolerance, 0);
+}
+
 }  // namespace craterkit::sph

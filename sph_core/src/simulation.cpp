@@ -543,6 +543,11 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   if (scenario.impact) {
     measurement.rho_initial = scenario.impact->initial_bulk_density;
     measurement.particle_spacing = scenario.impact->particle_spacing;
+    if (scenario.impact->graded) {  // the local spacing of a graded target (graded_spacing.hpp)
+      measurement.inner_spacing = scenario.impact->inner_spacing;
+      measurement.inner_radius = scenario.impact->inner_radius;
+      measurement.grading = scenario.impact->grading;
+    }
     measurement.kernel = config.kernel;
     measurement.quarter_symmetric = scenario.impact->symmetry == DomainSymmetry::quarter;
     measurement.boulders = impact_boulder_specs(scenario.problem.particles, *scenario.impact);

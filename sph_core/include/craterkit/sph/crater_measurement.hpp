@@ -32,7 +32,8 @@
 //   crater_radius       mean of the +x, -x, +y, -y edge radii (physics.md section 5);
 //   uncertainty         sqrt((s/2)^2 + (spacing/2)^2): s the sample standard deviation of the four radii
 //                       (s/2 the standard error of their mean) and half a particle spacing for the
-//                       resolution of a particle surface;
+//                       resolution of a particle surface (on a graded target the local spacing at the
+//                       crater radius);
 //   depth               -(lowest surface sample inside the edge of its ray): apparent depth below z = 0;
 //   profile z(r)        the surface height averaged over the azimuths at each r (NaN samples skipped);
 //   rim height/radius   maximum of the azimuthal profile outside the crater radius, and where;
@@ -45,10 +46,16 @@
 // Without a rim the plane density approaches rho_crit from below outside the wall and the edge is
 // ill-conditioned (up to 2 h too large): a warning says so when a directional crest is below spacing/4.
 //
+// Graded targets (options inner_spacing, inner_radius, grading): the sample radii are spaced dx(r)/4, the
+// vertical scan step is dx(r)/4 and the wall depth dx(r) at each sample radius r (unless given), with
+// dx(r) the set-up's local spacing (graded_spacing.hpp), so that a small crater in the fine core is seen
+// at the core's resolution and the coarse outer target is not sampled needlessly finely.
+//
 // Cost: particles are binned into a sparse 2-D grid of vertical columns (edge 2 h, h the 99.9th
 // percentile of the smoothing lengths; the few larger-h particles are checked for every column). Each
-// sample column gathers its candidates once, sorted by height, so a density evaluation along the
-// column touches only particles within 2 h_max in z. Columns are independent: OpenMP over samples.
+// sample column gathers its candidates once, grouped by smoothing length (factors of 2) and sorted by
+// height within each group, so a density evaluation along the column touches only particles within
+// their group's 2 h_max in z (one group when h is uniform). Columns are independent: OpenMP over samples.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -57,6 +64,7 @@
 #include <utility>
 #include <vector>
 
+#include "craterkit/sph/graded_spacing.hpp"
 #include "craterkit/sph/kernel.hpp"
 #include "craterkit/sph/particles.hpp"
 
@@ -93,6 +101,13 @@ BoulderSpec boulder_from_particles(const Particles& initial, std::string name, S
 struct CraterMeasurementOptions {
   double rho_initial = 0.0;       // kg/m^3, initial bulk density of the homogeneous matrix (> 0)
   double particle_spacing = 0.0;  // m, initial lattice spacing (> 0): sets the default resolutions
+  // Graded-resolution target (graded_spacing.hpp; the impact set-up's inner_spacing, inner_radius and
+  // grading, particle_spacing the outer spacing): the defaulted radial, vertical and wall-depth steps,
+  // the rim warning and the resolution term of the uncertainty then follow the local spacing dx(r) at
+  // each sample radius instead of particle_spacing. 0: uniform.
+  double inner_spacing = 0.0;  // m
+  double inner_radius = 0.0;   // m
+  double grading = 0.0;
   KernelType kernel = KernelType::cubic_spline;  // the kernel of the simulation
   std::array<double, 2> centre{0.0, 0.0};        // m, impact point (x, y) on the pre-impact plane
   double max_radius = 0.0;      // m, outer end of every ray; 0: (horizontal extent of the target
@@ -155,7 +170,10 @@ struct CraterMeasurement {
   std::vector<std::string> warnings;
   // The settings actually used (defaults resolved).
   double rho_initial = 0.0, rho_crit = 0.0, particle_spacing = 0.0;
+  // radial_step, vertical_step and wall_depth: their values at the centre (on a graded target, defaulted
+  // ones scale with the local spacing, dx(r) / inner_spacing).
   double max_radius = 0.0, radial_step = 0.0, vertical_step = 0.0, wall_depth = 0.0;
+  double inner_spacing = 0.0, inner_radius = 0.0, grading = 0.0;  // uniform: particle_spacing, 0, 0
   std::array<double, 2> centre{};
   KernelType kernel = KernelType::cubic_spline;
   bool quarter_symmetric = false;

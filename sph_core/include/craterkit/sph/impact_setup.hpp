@@ -40,6 +40,21 @@
 //    strength, cohesion, limiting strength, crush pressures) scaled by the same k: wave speeds and the
 //    Hugoniot in velocity space (shock and particle velocities, compression) are those of the original.
 //
+// Graded resolution (inner_spacing > 0; graded_target.hpp, docs/impact_setup.md "Graded resolution"):
+//  - the target (and the parts of boulders) is the graded point set instead of the lattice: a cubic core
+//    of spacing dx0 = inner_spacing for r < R_c = inner_radius, hemispherical shells outside whose spacing
+//    grows by the factor (1 + grading) per shell up to dx_max = particle_spacing, then dx_max out to R_dom;
+//    each particle stands for its cell (volume V), mass rho V, h = eta V^(1/3);
+//  - above z = 0 the points are the mirror images (x, y, -z) of those below, kept only inside boulders:
+//    the boulders sticking out of the surface get the graded target's local spacing, continuous across
+//    z = 0 (rather than a cubic lattice of one spacing, which could not match a boulder that spans a range
+//    of local spacings and would leave an internal interface between two arrangements in the boulder);
+//  - the projectile's lattice has the core spacing dx0 (resolved needs a >= 2 dx0; the stand-in's default
+//    radius is max(a, 2 dx0));
+//  - lithostatic state per particle, integrated down its own column (x, y) from the top of the material
+//    above it (z = 0, or the top of a boulder) through the materials met (lithostatic_pressure_adaptive);
+//  - the fixed shell is r > R_dom - shell_thickness as on the lattice (default 2 eta dx_max).
+//
 // Initial state: lithostatic (lithostatic.hpp), integrated down each lattice column from the top of its
 // highest node through the materials it meets; bulk density from the EOS at E = 0, distention alpha0
 // (alpha_c(P), which is alpha0 below P_e), S = 0, E = 0, v = 0; mass rho dx^3; h = eta dx (the projectile:
@@ -84,7 +99,10 @@ struct ImpactSetup {
   double stand_in_radius = 0.0;        // a_s, m; 0: max(a, 2 dx)
   double coupling_exponent = 0.4;      // nu of the coupling parameter a delta^nu U^mu
   double domain_radius = 15.0;         // R_dom, m
-  double particle_spacing = 0.25;      // dx, m
+  double particle_spacing = 0.25;      // dx, m (graded: the outer, largest spacing dx_max)
+  double inner_spacing = 0.0;          // dx0, m; 0: uniform lattice; 0 < dx0 < particle_spacing: graded
+  double grading = 0.06;               // s, growth of the spacing per spacing outward, (0, 0.2] (graded)
+  double inner_radius = 0.0;           // R_c, m, the uniform core (graded); 0: 8 dx0; >= 4 dx0
   double fixed_shell_thickness = 0.0;  // m; 0: 2 eta dx (two smoothing lengths, the kernel support)
   DomainSymmetry symmetry = DomainSymmetry::full;
   double transition_time = 0.0;              // t_transition, s; 0: 10 R_dom / c
@@ -111,7 +129,16 @@ struct ImpactSummary {
   std::array<double, 3> projectile_centre{};  // m, at t = 0
   // The target.
   double domain_radius = 0.0, particle_spacing = 0.0, fixed_shell_thickness = 0.0, smoothing_length = 0.0;
-  double gravity = 0.0;                   // g, m/s^2 (gravity vector (0, 0, -g))
+  // Graded resolution. Uniform lattice: inner_spacing = particle_spacing, grading = 0, inner_radius = 0.
+  bool graded = false;
+  double inner_spacing = 0.0;  // dx0, m (the projectile's lattice spacing, also when uniform)
+  double grading = 0.0;        // s
+  double inner_radius = 0.0;   // R_c, m
+  double core_radius = 0.0;    // rho_0, m: the hemisphere with the volume of the core cells
+  double graded_radius = 0.0;  // m, where the shells reach the outer spacing (end of the graded zone)
+  std::size_t shells = 0, graded_shells = 0;
+  double min_smoothing_length = 0.0, max_smoothing_length = 0.0;  // m, over the target and boulders
+  double gravity = 0.0;                                           // g, m/s^2 (gravity vector (0, 0, -g))
   double initial_bulk_density = 0.0;      // rho0 / alpha0 of the target at P = 0, kg/m^3
   double initial_distention = 1.0;        // alpha0
   double initial_sound_speed = 0.0;       // c of the undisturbed target at the surface, m/s
@@ -122,6 +149,7 @@ struct ImpactSummary {
   double low_sound_speed_modulus = 0.0;  // Pa
   // Particle counts.
   std::size_t target_particles = 0;      // matrix, including fixed
+  std::size_t core_particles = 0;        // graded: target and boulder particles of the uniform core
   std::size_t fixed_particles = 0;       // all materials
   std::size_t projectile_particles = 0;  // in this domain (a quarter of the sphere's with quarter symmetry)
   std::vector<std::size_t> boulder_particles;  // per boulder, including fixed
@@ -150,10 +178,10 @@ ImpactSummary impact_projectile_summary(const ImpactSetup& setup, double project
 Material density_scaled_material(const Material& material, double k);
 
 // Snapshot attributes for the crater measurement and the record of the run (docs/impact_setup.md):
-// numbers initial_bulk_density, particle_spacing, t_transition, A_low, projectile_radius, projectile_mass,
-// projectile_density, impact_speed, impact_angle, stand_in_radius, stand_in_density, stand_in_mass,
-// stand_in_density_scale,
-// coupling_exponent, domain_radius, gravity, boulder_<name>_material; texts kernel, symmetry
+// numbers initial_bulk_density, particle_spacing, inner_spacing, grading, inner_radius, t_transition, A_low,
+// projectile_radius, projectile_mass, projectile_density, impact_speed, impact_angle, stand_in_radius,
+// stand_in_density, stand_in_mass, stand_in_density_scale, coupling_exponent, domain_radius, gravity,
+// boulder_<name>_material; texts kernel, symmetry
 // ("full" | "quarter"), projectile_model.
 RunAttributes impact_run_attributes(const ImpactSummary& summary, KernelType kernel);
 

@@ -33,4 +33,12 @@ LithostaticState lithostatic_state(const Material& material, double pressure);
 double lithostatic_pressure_after(const Material& material, double p_top, double thickness, double g,
                                   int substeps = 2);
 
+// As lithostatic_pressure_after, with the step chosen by step doubling: one RK4 step over the whole
+// thickness is accepted when two half steps agree with it to relative_tolerance, otherwise each half is
+// integrated the same way (to at most 2^30 pieces). Under milligravity rho(P) is constant to ~1e-10
+// (P / bulk modulus), so one step is exact to rounding however long the column; through the crush curve
+// the steps shrink where rho(P) bends. For the graded target, where every particle has its own column.
+double lithostatic_pressure_adaptive(const Material& material, double p_top, double thickness, double g,
+                                     double relative_tolerance = 1e-13);
+
 }  // namespace craterkit::sph

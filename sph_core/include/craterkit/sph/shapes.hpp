@@ -5,6 +5,7 @@
 //   sqrt(x^2 + y^2) < 9, x < -2, |y| < 5, -5 < z < 0.5
 //   = cylinder(axis (0, 0), radius 9) ∩ half-space(x < -2) ∩ box(y in (-5, 5), z in (-5, 0.5)).
 // All inequalities are strict (a point on a boundary is outside), and all lengths are in m.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -77,6 +78,53 @@ struct Shape {
     if (!contains(part, x, y, z)) return false;
   }
   return true;
+}
+
+// The open interval (low, high) of heights z at which the vertical line through (x, y) lies inside the
+// shape (every primitive is convex, so its section with a line is one interval, and so is their
+// intersection); empty (low >= high) when the line misses it. Bounds may be infinite. Used to integrate
+// the lithostatic pressure down a column through the boulders above a particle (impact_setup.cpp).
+struct VerticalExtent {
+  double low = -std::numeric_limits<double>::infinity();
+  double high = std::numeric_limits<double>::infinity();
+  [[nodiscard]] bool empty() const noexcept { return !(low < high); }
+};
+
+[[nodiscard]] inline VerticalExtent vertical_extent(const Sphere& s, double x, double y) noexcept {
+  const double dx = x - s.centre[0], dy = y - s.centre[1];
+  const double d2 = s.radius * s.radius - dx * dx - dy * dy;
+  if (!(d2 > 0.0)) return {0.0, 0.0};
+  const double half = std::sqrt(d2);
+  return {s.centre[2] - half, s.centre[2] + half};
+}
+
+[[nodiscard]] inline VerticalExtent vertical_extent(const VerticalCylinder& c, double x, double y) noexcept {
+  if (contains(c, x, y, 0.0)) return {};
+  return {0.0, 0.0};
+}
+
+[[nodiscard]] inline VerticalExtent vertical_extent(const HalfSpace& h, double x, double y) noexcept {
+  const double rest = h.offset - h.normal[0] * x - h.normal[1] * y;  // n_z z < rest
+  if (h.normal[2] > 0.0) return {-std::numeric_limits<double>::infinity(), rest / h.normal[2]};
+  if (h.normal[2] < 0.0) return {rest / h.normal[2], std::numeric_limits<double>::infinity()};
+  if (rest > 0.0) return {};
+  return {0.0, 0.0};
+}
+
+[[nodiscard]] inline VerticalExtent vertical_extent(const AxisAlignedBox& b, double x, double y) noexcept {
+  if (b.lower[0] < x && x < b.upper[0] && b.lower[1] < y && y < b.upper[1]) return {b.lower[2], b.upper[2]};
+  return {0.0, 0.0};
+}
+
+[[nodiscard]] inline VerticalExtent vertical_extent(const Shape& shape, double x, double y) noexcept {
+  if (shape.parts.empty()) return {0.0, 0.0};
+  VerticalExtent out;
+  for (const ShapePart& part : shape.parts) {
+    const VerticalExtent e = std::visit([&](const auto& p) { return vertical_extent(p, x, y); }, part);
+    out.low = std::max(out.low, e.low);
+    out.high = std::min(out.high, e.high);
+  }
+  return out;
 }
 
 }  // namespace craterkit::sph
