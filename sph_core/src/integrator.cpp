@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace craterkit::sph {
 
@@ -14,6 +15,15 @@ inline bool moves(std::uint8_t flags) {
 
 inline double smoothing_length_of(double mass, double density, const SmoothingLengthParameters& s) {
   const double h = s.eta * std::cbrt(mass / density);
+  return std::clamp(h, s.min_smoothing_length, s.max_smoothing_length);
+}
+
+// h clamped to [h_min, h_max] and to max_smoothing_ratio times eta (m/rho)^(1/3).
+inline double clamped_smoothing_length(double h, double mass, double density,
+                                       const SmoothingLengthParameters& s) {
+  if (s.max_smoothing_ratio < std::numeric_limits<double>::infinity()) {
+    h = std::min(h, s.max_smoothing_ratio * s.eta * std::cbrt(mass / density));
+  }
   return std::clamp(h, s.min_smoothing_length, s.max_smoothing_length);
 }
 
@@ -58,8 +68,8 @@ void correct_selected(Particles& p, StepOf step_of, const ParticleSelection& sel
     if (count < low || count > high) {
       factor *= std::clamp(0.5 * (1.0 + std::cbrt(target / std::max(count, 1.0))), 0.8, 1.25);
     }
-    p.smoothing_length[i] = std::clamp(p.smoothing_length[i] * factor, smoothing.min_smoothing_length,
-                                       smoothing.max_smoothing_length);
+    p.smoothing_length[i] =
+        clamped_smoothing_length(p.smoothing_length[i] * factor, p.mass[i], p.density[i], smoothing);
   }
 }
 
@@ -145,8 +155,8 @@ void drift(Particles& p, double dt, const Box& box, const SmoothingLengthParamet
       // dalpha/dt <= 0 (compaction is irreversible); alpha >= 1 (no matrix denser than its law).
       p.distention[i] = std::max(1.0, p.distention[i] + dt * p.distention_rate[i]);
     }
-    p.smoothing_length[i] = std::clamp(p.smoothing_length[i] * std::cbrt(density / p.density[i]),
-                                       smoothing.min_smoothing_length, smoothing.max_smoothing_length);
+    p.smoothing_length[i] = clamped_smoothing_length(p.smoothing_length[i] * std::cbrt(density / p.density[i]),
+                                                     p.mass[i], p.density[i], smoothing);
   }
 }
 

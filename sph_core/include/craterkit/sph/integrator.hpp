@@ -22,7 +22,8 @@
 // (1 + (N_target/N)^(1/3))/2 per step, within [0.8, 1.25] (Hernquist & Katz 1989, eq. 2.12). Why:
 // with the continuity equation the density of a particle says nothing about how far its
 // neighbours are; a hot particle whose surroundings moved away (the centre of the Sedov blast)
-// otherwise keeps a small h, loses its neighbours and keeps its energy. Clamped to [h_min, h_max].
+// otherwise keeps a small h, loses its neighbours and keeps its energy. Clamped to [h_min, h_max] and to
+// at most max_smoothing_ratio eta (m/rho)^(1/3).
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -38,6 +39,11 @@ struct SmoothingLengthParameters {
   double eta = 1.2;                   // h = eta (m/rho)^(1/3): about 58 neighbours within 2h for eta = 1.2
   double min_smoothing_length = 0.0;  // m
   double max_smoothing_length = std::numeric_limits<double>::infinity();  // m
+  // h at most this many times eta (m/rho)^(1/3), the particle's own smoothing length at its density: a
+  // particle thrown clear of the others (ejecta) keeps its density and loses its neighbours, and the
+  // neighbour-number steering would grow its h without bound (impacts: 3, per particle, whatever the
+  // local spacing of a graded target).
+  double max_smoothing_ratio = std::numeric_limits<double>::infinity();
   double neighbour_band = 0.25;  // relative deviation of the neighbour count tolerated without steering
 };
 
