@@ -139,14 +139,16 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     c.kernel = type == "wendland_c2" ? KernelType::wendland_c2 : KernelType::cubic_spline;
     c.smoothing.eta = s.number("eta", c.smoothing.eta, 0.8, 3.0);
     c.smoothing.min_smoothing_length = s.number("min_smoothing_length", 0.0, 0.0, inf);
-    // Impacts: h at most 3 eta dx by default. A particle thrown clear of the target (the ejecta curtain
-    // before it leaves the domain) has too few neighbours, and the neighbour-count correction would
-    // otherwise grow its h without bound, until the neighbour search and the crater measurement visit
-    // every particle for it (measured: 96 ms per search for 2144 particles).
-    const auto* impact_parameters = std::get_if<ImpactSetup>(&c.setup);
-    const double default_max_h =
-        impact_parameters != nullptr ? 3.0 * c.smoothing.eta * impact_parameters->particle_spacing : inf;
-    c.smoothing.max_smoothing_length = s.number("max_smoothing_length", default_max_h, 0.0, inf, true);
+    // Impacts: h at most 3 eta (m/rho)^(1/3) by default, per particle (integrator.hpp). A particle thrown
+    // clear of the target (the ejecta curtain before it leaves the domain) has too few neighbours, and
+    // the neighbour-count correction would otherwise grow its h without bound, until the neighbour search
+    // and the crater measurement visit every particle for it (measured: 96 ms per search for 2144
+    // particles). Relative to the particle's own h, so that it holds for the fine particles of a graded
+    // target as for the coarse ones.
+    const bool impact_setup = std::holds_alternative<ImpactSetup>(c.setup);
+    c.smoothing.max_smoothing_length = s.number("max_smoothing_length", inf, 0.0, inf, true);
+    c.smoothing.max_smoothing_ratio =
+        s.number("max_smoothing_ratio", impact_setup ? 3.0 : inf, 1.0, inf);
     c.smoothing.neighbour_band = s.number("neighbour_band", c.smoothing.neighbour_band, 0.0, 1.0, true);
     const std::string density = s.text("density", "continuity", {"continuity", "summation"});
     c.density = density == "summation" ? DensityMethod::summation : DensityMethod::continuity;
@@ -167,6 +169,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       s.fail("alpha_min", "value " + format_number(v.alpha_min) + " exceeds viscosity.alpha");
     v.decay_factor = s.number("decay_factor", v.decay_factor, 0.0, 10.0, true);
     v.epsilon = s.number("epsilon", v.epsilon, 0.0, 1.0, true);
+    v.balsara = s.boolean("balsara", v.balsara);
     s.finish();
   }
   {
@@ -187,12 +190,19 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     t.max_step = s.number("max_step", t.max_step, 0.0, inf, true);
     // Impacts default to the velocity-change limit (time_step.hpp: the light stand-in projectile).
     t.velocity_change = s.number("velocity_change", impact_setup_parameters != nullptr ? 0.1 : 0.0, 0.0, 1.0);
+    t.block_levels = static_cast<int>(s.integer("block_levels", 0, 0, 30));
+    if (t.block_levels > 0 && c.density == DensityMethod::summation) {
+      s.fail("block_levels",
+             "block time steps need kernel.density = \"continuity\" (a summed density would "
+             "need every neighbour's density at every substep)");
+    }
     s.finish();
   }
   {
     TomlKeys s = section("neighbours");
     auto& n = c.neighbours;
-    n.search.skin = s.number("skin", n.search.skin, 0.0, 1.0);
+    // Block time steps check the lists at every substep: without a skin they would be rebuilt at each.
+    n.search.skin = s.number("skin", c.time_step.block_levels > 0 ? 0.1 : n.search.skin, 0.0, 1.0);
     n.sort_interval = static_cast<std::uint64_t>(s.integer("sort_interval", 20, 0, int_max));
     s.finish();
   }

@@ -69,7 +69,9 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       nodes_.capacity() * sizeof(Node) +
       (rank_.capacity() + group_of_.capacity() + candidates_.capacity()) * sizeof(std::uint32_t) +
       candidate_offsets_.capacity() * sizeof(std::uint64_t) +
-      image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity();
+      image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity() +
+      (motion_used_.capacity() + motion_budget_.capacity()) * sizeof(double) + query_mark_.capacity() +
+      group_has_query_.capacity();
   for (const auto& t : scratch_)
     bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
   return bytes;
@@ -88,6 +90,7 @@ void NeighbourSearch::release_workspace() {
   release(group_queried_);
   release(near_planes_);
   release(image_start_);
+  release(group_has_query_);
 }
 
 void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
@@ -355,10 +358,9 @@ void NeighbourSearch::make_octree() {
 }
 
 template <bool Periodic>
-void NeighbourSearch::candidates_octree(std::size_t g, const Box& box,
-                                        std::vector<std::uint32_t>& out) const {
+void NeighbourSearch::candidates_octree(std::size_t g, const Box& box, std::vector<std::uint32_t>& out,
+                                        double grow) const {
   const Group& group = groups_[g];
-  const double grow = 1.0 + options_.skin;
   const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
   const std::size_t count = nodes_.size();
   for (std::size_t i = 0; i < count;) {
@@ -380,10 +382,10 @@ void NeighbourSearch::candidates_octree(std::size_t g, const Box& box,
 }
 
 template <bool Periodic>
-void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
+void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, double grow,
+                                    const std::uint8_t* query_mark) {
   const std::size_t n = particles_;        // lists for the real particles only
   const std::size_t entries = xs_.size();  // particles and mirror images in the tree
-  const double grow = 1.0 + options_.skin;
   const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
   constexpr double inf = std::numeric_limits<double>::infinity();
   const std::array<double, 3> half{box.periodic[0] ? 0.5 * edge[0] : inf,
@@ -408,12 +410,20 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
   }
   if (scratch_.size() < std::size_t(omp_get_max_threads()))
     scratch_.resize(std::size_t(omp_get_max_threads()));
+  // With a query mark only the groups holding a queried particle need candidates.
+  const std::size_t group_count = groups_.size();
+  if (query_mark != nullptr) {
+    group_has_query_.assign(group_count, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (query_mark[i] != 0) group_has_query_[group_of_[rank_[i]]] = 1;
+    }
+  }
 
   // Candidate groups of every group, counted then stored (finding them twice is cheap next to the pairs).
-  const std::size_t group_count = groups_.size();
   const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
     out.clear();
-    if (group_queried_[g]) candidates_octree<Periodic>(g, box, out);  // images alone are never queried
+    const bool queried = group_queried_[g] != 0 && (query_mark == nullptr || group_has_query_[g] != 0);
+    if (queried) candidates_octree<Periodic>(g, box, out, grow);  // images alone are never queried
   };
   candidate_offsets_.resize(group_count + 1);
   candidate_offsets_[0] = 0;
@@ -442,6 +452,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists) {
   // might not fit in `room` entries (the test writes every candidate before deciding whether to keep it).
   // Only the identical entry is dropped: a particle near a mirror plane keeps its own image.
   const auto gather = [&](std::uint32_t k, std::uint32_t* out, std::size_t room) -> std::size_t {
+    if (query_mark != nullptr && query_mark[original_[k]] == 0) return 0;  // (k is a real particle)
     const std::uint32_t g = group_of_[k];
     const double xi = xs[k], yi = ys[k], zi = zs[k], hi = hs[k];
     std::size_t used = 0;
@@ -592,13 +603,118 @@ void NeighbourSearch::build(const NeighbourInput& input, const Box& box, Neighbo
   built_ = false;
   sort_particles(input, box);
   make_octree();
+  if (refitting_) reset_motion_budget();
+  const double grow = 1.0 + options_.skin;
   if (box.any_periodic()) {
-    collect_pairs<true>(box, lists);
+    collect_pairs<true>(box, lists, grow, nullptr);
   } else {
-    collect_pairs<false>(box, lists);
+    collect_pairs<false>(box, lists, grow, nullptr);
   }
   box_ = box;
   built_ = true;
+}
+
+void NeighbourSearch::reset_motion_budget() {
+  const std::size_t entries = xs_.size();
+  resize_buffer(motion_used_, entries, (entries - particles_) / 4);
+  resize_buffer(motion_budget_, entries, (entries - particles_) / 4);
+  const double skin = options_.skin;
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < entries; ++k) {
+    motion_used_[k] = 0.0;
+    motion_budget_[k] = skin * hs_[k];
+  }
+}
+
+bool NeighbourSearch::refit(const NeighbourInput& input, const Box& box) {
+  const std::size_t entries = xs_.size();
+  const MirrorPlanes planes = mirror_planes(box);
+  bool stale = false;
+#pragma omp parallel for schedule(static) reduction(|| : stale)
+  for (std::size_t k = 0; k < entries; ++k) {
+    const MirrorImage image = mirror_image(original_[k]);
+    const std::size_t i = image.index;
+    const double x = image.position(0, planes, wrap_position(box, 0, input.x[i]));
+    const double y = image.position(1, planes, wrap_position(box, 1, input.y[i]));
+    const double z = image.position(2, planes, wrap_position(box, 2, input.z[i]));
+    const double h = input.smoothing_length[i];
+    if (image.bits == 0) {
+      // The motion since the last refit, summed: an upper bound of the motion since the build (the
+      // criterion of needs_rebuild, which decides whether the images and the grouping still hold).
+      const auto d = displacement(box, x, y, z, xs_[k], ys_[k], zs_[k]);
+      motion_used_[k] += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + std::max(0.0, h - hs_[k]);
+      if (!(motion_used_[k] <= motion_budget_[k])) stale = true;
+    }
+    xs_[k] = x;
+    ys_[k] = y;
+    zs_[k] = z;
+    hs_[k] = h;
+  }
+  if (stale) return false;
+    // Tight boxes of the groups, then of the nodes, children before parents (depth-first order: a node's
+    // children follow it, so visiting the nodes backwards reaches every child first).
+#pragma omp parallel for schedule(static)
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    Group& group = groups_[g];
+    group.lower = group.upper = {xs_[group.begin], ys_[group.begin], zs_[group.begin]};
+    group.h_max = 0.0;
+    for (std::uint32_t k = group.begin; k < group.end; ++k) {
+      group.lower = {std::min(group.lower[0], xs_[k]), std::min(group.lower[1], ys_[k]),
+                     std::min(group.lower[2], zs_[k])};
+      group.upper = {std::max(group.upper[0], xs_[k]), std::max(group.upper[1], ys_[k]),
+                     std::max(group.upper[2], zs_[k])};
+      group.h_max = std::max(group.h_max, hs_[k]);
+    }
+  }
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t k = nodes_.size(); k-- > 0;) {
+    Node& node = nodes_[k];
+    if (node.group >= 0) {
+      const Group& group = groups_[std::size_t(node.group)];
+      node.lower = group.lower;
+      node.upper = group.upper;
+      node.h_max = group.h_max;
+      continue;
+    }
+    node.lower = {inf, inf, inf};
+    node.upper = {-inf, -inf, -inf};
+    node.h_max = 0.0;
+    for (std::size_t c = k + 1; c < node.skip; c = nodes_[c].skip) {
+      for (int a = 0; a < 3; ++a) {
+        node.lower[a] = std::min(node.lower[a], nodes_[c].lower[a]);
+        node.upper[a] = std::max(node.upper[a], nodes_[c].upper[a]);
+      }
+      node.h_max = std::max(node.h_max, nodes_[c].h_max);
+    }
+  }
+  return true;
+}
+
+void NeighbourSearch::build_for(const NeighbourInput& input, const Box& box,
+                                std::span<const std::uint32_t> queries, NeighbourLists& lists,
+                                bool restructure) {
+  refitting_ = true;
+  const std::size_t n = input.x.size();
+  const bool same_layout = built_ && !nodes_.empty() && n == particles_ && input.y.size() == n &&
+                           input.z.size() == n && input.smoothing_length.size() == n &&
+                           box.periodic == box_.periodic && box.mirror == box_.mirror &&
+                           box.lower == box_.lower && box.upper == box_.upper;
+  if (restructure || !same_layout || !refit(input, box)) {
+    built_ = false;
+    sort_particles(input, box);
+    make_octree();
+    reset_motion_budget();
+    box_ = box;
+    built_ = true;
+    ++restructures_;
+  }
+  query_mark_.assign(n, 0);
+  for (const std::uint32_t i : queries) query_mark_[i] = 1;
+  if (box.any_periodic()) {
+    collect_pairs<true>(box, lists, 1.0, query_mark_.data());
+  } else {
+    collect_pairs<false>(box, lists, 1.0, query_mark_.data());
+  }
 }
 
 bool NeighbourSearch::needs_rebuild(const NeighbourInput& input) const {

@@ -9,6 +9,7 @@ void Particles::resize(std::size_t n) {
   for_each_field([n](std::string_view, auto& field) { field.resize(n); });
   for (std::size_t i = old; i < n; ++i) {
     distention[i] = 1.0;
+    balsara[i] = 1.0;
     flags[i] = particle_active;
   }
 }

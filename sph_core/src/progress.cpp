@@ -47,16 +47,15 @@ Progress::Progress(ProgressOptions options, std::FILE* stream, std::function<dou
   terminal_ = stream_ != nullptr && ::isatty(::fileno(stream_)) == 1;
 }
 
-ProgressSample Progress::sample(double time, std::uint64_t step, double dt, std::size_t particles, double now,
-                                double since_wall, double since_time, std::uint64_t since_step) const {
+ProgressSample Progress::sample(double time, std::uint64_t step, double dt, std::uint64_t updates, double now,
+                                double since_wall, double since_time, std::uint64_t since_updates) const {
   ProgressSample s;
   s.time = time;
   s.end_time = options_.end_time;
   s.step = step;
   s.dt = dt;
   const double wall = now - since_wall;
-  const double updates = static_cast<double>(particles) * static_cast<double>(step - since_step);
-  s.particle_updates_per_second = wall > 0 ? updates / wall : 0;
+  s.particle_updates_per_second = wall > 0 ? static_cast<double>(updates - since_updates) / wall : 0;
   // Time left from the rate of simulated time over the last interval.
   const double simulated = time - since_time;
   if (options_.end_time > 0 && wall > 0 && simulated > 0) {
@@ -65,32 +64,35 @@ ProgressSample Progress::sample(double time, std::uint64_t step, double dt, std:
   return s;
 }
 
-void Progress::update(double time, std::uint64_t step, double dt, std::size_t particles) {
+void Progress::update(double time, std::uint64_t step, double dt, std::uint64_t particle_updates) {
   if (!options_.enabled || stream_ == nullptr) return;
   const double now = clock_();
   if (!started_) {  // the first call starts the clock: no rate yet
     started_ = true;
     start_wall_ = now;
     start_time_ = time;
-    start_step_ = step;
+    start_updates_ = particle_updates;
     last_print_wall_ = now;
     last_print_time_ = time;
-    last_print_step_ = step;
+    last_print_updates_ = particle_updates;
     return;
   }
   const double interval = terminal_ ? options_.redraw_seconds : options_.log_interval_seconds;
   if (now - last_print_wall_ < interval) return;
-  print(sample(time, step, dt, particles, now, last_print_wall_, last_print_time_, last_print_step_), false);
+  print(
+      sample(time, step, dt, particle_updates, now, last_print_wall_, last_print_time_, last_print_updates_),
+      false);
   last_print_wall_ = now;
   last_print_time_ = time;
-  last_print_step_ = step;
+  last_print_updates_ = particle_updates;
 }
 
-void Progress::finish(double time, std::uint64_t step, double dt, std::size_t particles) {
+void Progress::finish(double time, std::uint64_t step, double dt, std::uint64_t particle_updates) {
   if (!options_.enabled || stream_ == nullptr) return;
   const double now = clock_();
-  ProgressSample s = started_ ? sample(time, step, dt, particles, now, start_wall_, start_time_, start_step_)
-                              : ProgressSample{time, options_.end_time, step, dt, 0, -1};
+  ProgressSample s =
+      started_ ? sample(time, step, dt, particle_updates, now, start_wall_, start_time_, start_updates_)
+               : ProgressSample{time, options_.end_time, step, dt, 0, -1};
   s.seconds_left = 0;
   print(s, true);
 }

@@ -50,8 +50,9 @@ inline bool invert3(const double m[9], double inv[9]) noexcept {
 
 template <class Kernel, bool solid, bool mirrored>
 RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
-                       RateWorkspace& workspace, VelocityGradients* gradients) {
-  const auto n = static_cast<std::int64_t>(p.size());
+                       RateWorkspace& workspace, VelocityGradients* gradients,
+                       const ParticleSelection& selection) {
+  const auto n = static_cast<std::int64_t>(selection.size());
   const double* x = p.x.data();
   const double* y = p.y.data();
   const double* z = p.z.data();
@@ -63,11 +64,20 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   const double* h = p.smoothing_length.data();
   const double* c = p.sound_speed.data();
   const double* alpha = p.viscosity_alpha.data();
+  // The Balsara factors of the last evaluation are read (for i and j); the new ones go to the workspace
+  // and replace them after the pass, so that no particle reads a neighbour's value of this pass (the
+  // result would depend on the thread schedule).
+  p.balsara.resize(p.size(), 1.0);
+  const double* balsara = p.balsara.data();
+  if (options.viscosity.balsara) workspace.balsara_next.resize(p.size());
+  double* balsara_next = workspace.balsara_next.data();
   const double* pressure = p.pressure.data();
   const double* inv_rho = workspace.inverse_density.data();
   const double* volume = workspace.volume.data();
   workspace.neighbour_count.resize(p.size());
   std::uint32_t* neighbour_count = workspace.neighbour_count.data();
+  workspace.signal_time.resize(p.size());
+  double* signal_time = workspace.signal_time.data();
   const double* sxx = p.stress_xx.data();
   const double* sxy = p.stress_xy.data();
   const double* sxz = p.stress_xz.data();
@@ -86,6 +96,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
   const auto& av = options.viscosity;
   const bool use_switch = av.viscosity_switch != ViscositySwitch::none;
+  const bool use_balsara = av.balsara;
   const double beta_over_alpha = av.alpha > 0.0 ? av.beta / av.alpha : 0.0;
   const double eps = av.epsilon;
   const double inf = std::numeric_limits<double>::infinity();
@@ -101,11 +112,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
 #pragma omp parallel for schedule(dynamic, 128) reduction(min : min_signal_time) reduction(+ : interacting)
   for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+    const auto i = selection.at(static_cast<std::size_t>(ii));
     if ((flags[i] & (particle_fixed | particle_ejected)) != 0) {
       ax_out[i] = ay_out[i] = az_out[i] = 0.0;
       drho_out[i] = du_out[i] = dalpha_out[i] = 0.0;
       neighbour_count[i] = 0;
+      signal_time[i] = inf;
       continue;
     }
     const double xi = x[i], yi = y[i], zi = z[i];
@@ -113,12 +125,14 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     const double hi = h[i], ci = c[i], rhoi = rho[i], inv_rhoi = inv_rho[i];
     const double pr2i = pressure[i] * (inv_rhoi * inv_rhoi);  // P_i/rho_i^2, rounded as for j
     const double alphai = use_switch ? alpha[i] : av.alpha;
+    const double balsarai = balsara[i];
 
     double ax = 0.0, ay = 0.0, az = 0.0;
-    double vv_grad = 0.0;  // sum_j (m_j/rho_j) v_ij . grad_i W_ij  (= -div v_i)
-    double mv_grad = 0.0;  // sum_j m_j v_ij . grad_i W_ij
-    double viscous = 0.0;  // sum_j m_j Pi_ij v_ij . grad_i W_ij
-    double max_mu = 0.0;   // max_j |mu_ij| over approaching pairs
+    double vv_grad = 0.0;                             // sum_j (m_j/rho_j) v_ij . grad_i W_ij  (= -div v_i)
+    double mv_grad = 0.0;                             // sum_j m_j v_ij . grad_i W_ij
+    double viscous = 0.0;                             // sum_j m_j Pi_ij v_ij . grad_i W_ij
+    double max_mu = 0.0;                              // max_j |mu_ij| over approaching pairs
+    double curl_x = 0.0, curl_y = 0.0, curl_z = 0.0;  // sum_j V_j (v_j - v_i) x grad_i W_ij (Balsara, fluids)
     std::uint64_t count = 0;
 
     // Solid-only state and accumulators (dead code, removed by the compiler, for fluids; the stress
@@ -172,6 +186,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         const double alpha_ij = use_switch ? 0.5 * (alphai + alpha[j]) : av.alpha;
         const double beta_ij = use_switch ? beta_over_alpha * alpha_ij : av.beta;
         pi_ij = (-alpha_ij * cbar * mu + beta_ij * mu * mu) / rhobar;
+        if (use_balsara) pi_ij *= 0.5 * (balsarai + balsara[j]);
         max_mu = std::max(max_mu, -mu);
       }
 
@@ -183,6 +198,13 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       vv_grad += volume[j] * v_dot_g;
       mv_grad += mj * v_dot_g;
       viscous += mj * pi_ij * v_dot_g;
+      if constexpr (!solid) {
+        if (use_balsara) {  // (v_j - v_i) x grad W = grad W x dv (solids take it from G below)
+          curl_x += volume[j] * (gy * dvz - gz * dvy);
+          curl_y += volume[j] * (gz * dvx - gx * dvz);
+          curl_z += volume[j] * (gx * dvy - gy * dvx);
+        }
+      }
 
       if constexpr (solid) {
         // + m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad_i W_ij; S_i/rho_i^2 . grad W serves the work term too.
@@ -247,6 +269,19 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     }
     du_out[i] = du;
 
+    if (use_balsara) {
+      // Balsara (1995) factor |div v| / (|div v| + |curl v| + 1e-4 c/h) for the next evaluation, from the
+      // uncorrected (kernel-sum) gradient: G[3a + b] = dv_a/dx_b for solids.
+      if constexpr (solid) {
+        curl_x = G[7] - G[5];
+        curl_y = G[2] - G[6];
+        curl_z = G[3] - G[1];
+      }
+      const double div_v = std::abs(vv_grad);
+      const double curl_v = std::sqrt(curl_x * curl_x + curl_y * curl_y + curl_z * curl_z);
+      const double denominator = div_v + curl_v + 1e-4 * ci / hi;
+      balsara_next[i] = denominator > 0.0 ? div_v / denominator : 1.0;
+    }
     if (use_switch) {
       // Morris & Monaghan (1997): decay towards alpha_min on tau = h / (l c), growth in compression.
       const double div_v = -vv_grad;
@@ -258,9 +293,18 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
     const double beta_i = use_switch ? beta_over_alpha * alphai : av.beta;
     const double signal = ci + 1.2 * (alphai * ci + beta_i * max_mu);
-    if (signal > 0.0) min_signal_time = std::min(min_signal_time, hi / signal);
+    signal_time[i] = signal > 0.0 ? hi / signal : inf;
+    min_signal_time = std::min(min_signal_time, signal_time[i]);
     interacting += count;
     neighbour_count[i] = static_cast<std::uint32_t>(count);
+  }
+  if (use_balsara) {
+    double* factor = p.balsara.data();
+#pragma omp parallel for schedule(static)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = selection.at(static_cast<std::size_t>(ii));
+      if ((flags[i] & (particle_fixed | particle_ejected)) == 0) factor[i] = balsara_next[i];
+    }
   }
   return RateSummary{min_signal_time, interacting};
 }
@@ -269,15 +313,24 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
 RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                           RateWorkspace& workspace, VelocityGradients* gradients) {
+  return compute_rates(particles, pairs, options, workspace, ParticleSelection::all(particles.size()),
+                       gradients);
+}
+
+RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                          RateWorkspace& workspace, const ParticleSelection& selection,
+                          VelocityGradients* gradients) {
   if (gradients != nullptr) gradients->resize(particles.size());
   return with_kernel(options.kernel, [&](auto kernel) {
     using K = decltype(kernel);
     if (options.mirror.any()) {
-      return options.solid ? rates_impl<K, true, true>(particles, pairs, options, workspace, gradients)
-                           : rates_impl<K, false, true>(particles, pairs, options, workspace, gradients);
+      return options.solid
+                 ? rates_impl<K, true, true>(particles, pairs, options, workspace, gradients, selection)
+                 : rates_impl<K, false, true>(particles, pairs, options, workspace, gradients, selection);
     }
-    return options.solid ? rates_impl<K, true, false>(particles, pairs, options, workspace, gradients)
-                         : rates_impl<K, false, false>(particles, pairs, options, workspace, gradients);
+    return options.solid
+               ? rates_impl<K, true, false>(particles, pairs, options, workspace, gradients, selection)
+               : rates_impl<K, false, false>(particles, pairs, options, workspace, gradients, selection);
   });
 }
 

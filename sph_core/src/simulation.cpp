@@ -3,9 +3,11 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -185,8 +187,9 @@ Simulation::Simulation(SimulationConfig config, ProblemSetup problem)
   configure();
   update_smoothing_length(problem_.particles, config_.smoothing);
   evaluate_rates();
-  limits_ = sph::time_step_limits(problem_.particles, rate_summary_, config_.time_step);
-  dt_next_ = limits_.step(config_.time_step.max_step);
+  limits_ = update_time_steps(problem_.particles, rate_workspace_.signal_time, time_step_parameters(),
+                              ParticleSelection::all(problem_.particles.size()));
+  dt_next_ = next_block_length();
   initial_ = conserved();
 }
 
@@ -219,42 +222,165 @@ Simulation::Simulation(SimulationConfig config, ProblemSetup problem, Particles 
   force_rebuild_ = true;
 }
 
-void Simulation::update_equation_of_state() {
+void Simulation::update_equation_of_state(const ParticleSelection& selection) {
   auto scope = timers_.measure("equation_of_state");
   if (problem_.particles.solid_fields) {
-    update_material_state(problem_.particles, problem_.materials, rate_workspace_, shear_modulus_);
+    update_material_state(problem_.particles, problem_.materials, rate_workspace_, shear_modulus_, selection);
   } else {
-    update_pressure(problem_.particles, equations_of_state_, rate_workspace_);
+    update_pressure(problem_.particles, equations_of_state_, rate_workspace_, selection);
   }
 }
 
-void Simulation::evaluate_rates() {
+void Simulation::update_equation_of_state() {
+  update_equation_of_state(ParticleSelection::all(problem_.particles.size()));
+}
+
+void Simulation::update_neighbours() {
   auto& p = problem_.particles;
-  {
-    auto scope = timers_.measure("neighbours");
-    // Only the active particles (ejecta are behind them) enter the search and hence the pair loops.
-    const NeighbourInput input{std::span<const double>(p.x).first(active_),
-                               std::span<const double>(p.y).first(active_),
-                               std::span<const double>(p.z).first(active_),
-                               std::span<const double>(p.smoothing_length).first(active_)};
-    if (force_rebuild_ || search_.needs_rebuild(input)) {
-      search_.build(input, problem_.box, lists_);
-      ++rebuilds_;
-      force_rebuild_ = false;
-    }
+  auto scope = timers_.measure("neighbours");
+  // Only the active particles (ejecta are behind them) enter the search and hence the pair loops.
+  const NeighbourInput input{std::span<const double>(p.x).first(active_),
+                             std::span<const double>(p.y).first(active_),
+                             std::span<const double>(p.z).first(active_),
+                             std::span<const double>(p.smoothing_length).first(active_)};
+  if (force_rebuild_ || search_.needs_rebuild(input)) {
+    search_.build(input, problem_.box, lists_);
+    ++rebuilds_;
+    force_rebuild_ = false;
   }
+}
+
+void Simulation::update_neighbours(std::span<const std::uint32_t> queries) {
+  auto& p = problem_.particles;
+  auto scope = timers_.measure("neighbours");
+  const NeighbourInput input{std::span<const double>(p.x).first(active_),
+                             std::span<const double>(p.y).first(active_),
+                             std::span<const double>(p.z).first(active_),
+                             std::span<const double>(p.smoothing_length).first(active_)};
+  const std::uint64_t before = search_.restructures();
+  search_.build_for(input, problem_.box, queries, lists_, force_rebuild_);
+  rebuilds_ += search_.restructures() - before;
+  force_rebuild_ = false;
+}
+
+void Simulation::evaluate_rates() {
+  const auto all = ParticleSelection::all(problem_.particles.size());
+  update_neighbours();
+  evaluate_rates(all, all);
+}
+
+void Simulation::evaluate_rates(const ParticleSelection& rates_for, const ParticleSelection& state_for) {
+  auto& p = problem_.particles;
   if (config_.density == DensityMethod::summation) {
     auto scope = timers_.measure("density");
     compute_summation_density(p, PairList{lists_.offsets, lists_.neighbours}, config_.kernel,
                               rate_options_.period, rate_options_.mirror);
   }
-  update_equation_of_state();
+  update_equation_of_state(state_for);
   {
     auto scope = timers_.measure("rates");
     rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
-                                  rate_workspace_, rate_options_.solid ? &gradients_ : nullptr);
-    if (rate_options_.solid) compute_stress_rates(p, gradients_, shear_modulus_);
-    if (porous_) compute_distention_rates(p, problem_.materials);
+                                  rate_workspace_, rates_for, rate_options_.solid ? &gradients_ : nullptr);
+    if (rate_options_.solid) compute_stress_rates(p, gradients_, shear_modulus_, rates_for);
+    if (porous_) compute_distention_rates(p, problem_.materials, rates_for);
+  }
+}
+
+TimeStepParameters Simulation::time_step_parameters() const {
+  // After the switch the matrix law is energy-free: the specific energy no longer feeds back into the
+  // pressure, and its relative-change limit (meant to resolve Tillotson's energy dependence) is dropped.
+  TimeStepParameters parameters = config_.time_step;
+  if (late_stage_active_) parameters.energy_change = 0.0;
+  return parameters;
+}
+
+double Simulation::next_block_length() const {
+  const auto& p = problem_.particles;
+  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+  for (std::size_t i = 0; i < active_; ++i) {
+    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
+    shortest = std::min(shortest, p.time_step[i]);
+    longest = std::max(longest, p.time_step[i]);
+  }
+  if (!(longest > 0.0)) return std::min(shortest, config_.time_step.max_step);  // nothing moves
+  const int levels = config_.time_step.block_levels;
+  return std::min({longest, std::ldexp(shortest, levels), config_.time_step.max_step});
+}
+
+ParticleSelection Simulation::neighbourhood_of(std::span<const std::uint32_t> particles) {
+  const std::size_t n = problem_.particles.size();
+  needed_mark_.assign(n, 0);
+  const auto count = static_cast<std::int64_t>(particles.size());
+  std::uint8_t* mark = needed_mark_.data();
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t kk = 0; kk < count; ++kk) {
+    const std::size_t i = particles[static_cast<std::size_t>(kk)];
+    std::atomic_ref<std::uint8_t>(mark[i]).store(1, std::memory_order_relaxed);
+    for (const std::uint32_t entry : lists_.of(i)) {
+      std::atomic_ref<std::uint8_t>(mark[neighbour_index(entry)]).store(1, std::memory_order_relaxed);
+    }
+  }
+  needed_list_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mark[i] != 0) needed_list_.push_back(static_cast<std::uint32_t>(i));
+  }
+  return ParticleSelection::listed(needed_list_);
+}
+
+void Simulation::advance_block(double block) {
+  auto& p = problem_.particles;
+  const auto all = ParticleSelection::all(p.size());
+  const bool integrate_density = config_.density == DensityMethod::continuity;
+  {
+    auto scope = timers_.measure("integration");
+    begin_step(p, integrator_workspace_, all);
+  }
+  // Lists of every particle at the start (the neighbour rule of the schedule), then of the active ones at
+  // each substep (NeighbourSearch::build_for: the octree refit, not rebuilt).
+  all_indices_.resize(active_);
+  for (std::size_t i = 0; i < active_; ++i) all_indices_[i] = static_cast<std::uint32_t>(i);
+  update_neighbours(all_indices_);
+  {
+    auto scope = timers_.measure("schedule");
+    schedule_.start(block, p.time_step, p.flags, active_, lists_);
+  }
+  const TimeStepParameters parameters = time_step_parameters();
+  while (!schedule_.finished()) {
+    double dt = 0.0;
+    {
+      auto scope = timers_.measure("schedule");
+      dt = schedule_.advance();
+    }
+    {
+      auto scope = timers_.measure("integration");
+      drift(p, dt, problem_.box, config_.smoothing);
+    }
+    update_neighbours(schedule_.active());
+    const auto active = ParticleSelection::listed(schedule_.active());
+    ParticleSelection needed = all;
+    {
+      auto scope = timers_.measure("schedule");
+      // The inactive neighbours of an active particle are read at their predicted state: their pressure,
+      // sound speed and (for solids) returned stress must be of that state. Nobody else's is read.
+      needed = neighbourhood_of(schedule_.active());
+    }
+    evaluate_rates(active, needed);
+    {
+      auto scope = timers_.measure("integration");
+      correct(p, schedule_.active_steps(), active, integrator_workspace_, rate_workspace_.neighbour_count,
+              config_.smoothing, integrate_density);
+      if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention, active);
+    }
+    update_equation_of_state(active);
+    particle_updates_ += active.size();
+    {
+      auto scope = timers_.measure("schedule");
+      (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
+      if (!schedule_.finished()) {
+        schedule_.relevel(p.time_step, lists_);
+        begin_step(p, integrator_workspace_, active);
+      }
+    }
   }
 }
 
@@ -281,18 +407,30 @@ void Simulation::step(double target_time) {
     p.permute(order_);
     force_rebuild_ = true;
   }
-  {
-    auto scope = timers_.measure("integration");
-    predict(p, dt, problem_.box, integrator_workspace_, config_.smoothing);
+  if (config_.time_step.block_levels > 0) {
+    advance_block(dt);
+  } else {
+    {
+      auto scope = timers_.measure("integration");
+      predict(p, dt, problem_.box, integrator_workspace_, config_.smoothing);
+    }
+    evaluate_rates();
+    {
+      auto scope = timers_.measure("integration");
+      correct(p, dt, integrator_workspace_, rate_workspace_.neighbour_count, config_.smoothing,
+              config_.density == DensityMethod::continuity);
+      if (porous_) {
+        limit_compaction(p, problem_.materials, integrator_workspace_.distention,
+                         ParticleSelection::all(p.size()));
+      }
+    }
+    update_equation_of_state();
+    particle_updates_ += active_;
   }
-  evaluate_rates();
-  {
-    auto scope = timers_.measure("integration");
-    correct(p, dt, integrator_workspace_, rate_workspace_.neighbour_count, config_.smoothing,
-            config_.density == DensityMethod::continuity);
-    if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention);
-  }
-  update_equation_of_state();
+  // Every particle's own step limit, before ejection reorders the particles (the signal times of the
+  // rate pass are per index).
+  limits_ = update_time_steps(p, rate_workspace_.signal_time, time_step_parameters(),
+                              ParticleSelection::all(p.size()));
   time_ = land ? target_time : time_ + dt;
   ++step_;
   eject();
@@ -310,17 +448,14 @@ void Simulation::step(double target_time) {
     // The integrator reuses the rates of this evaluation in the next step: they must be the switched
     // medium's (evaluate_rates() evaluates the equation of state first).
     evaluate_rates();
+    limits_ = update_time_steps(p, rate_workspace_.signal_time, time_step_parameters(),
+                                ParticleSelection::all(p.size()));
     mach_at_transition_ = mach();
     late_stage_max_mach_ = mach_at_transition_;
   } else if (late_stage_active_) {
     late_stage_max_mach_ = std::max(late_stage_max_mach_, mach());
   }
-  // After the switch the matrix law is energy-free: the specific energy no longer feeds back into the
-  // pressure, and its relative-change limit (meant to resolve Tillotson's energy dependence) is dropped.
-  TimeStepParameters parameters = config_.time_step;
-  if (late_stage_active_) parameters.energy_change = 0.0;
-  limits_ = sph::time_step_limits(p, rate_summary_, parameters);
-  dt_next_ = limits_.step(config_.time_step.max_step);
+  dt_next_ = next_block_length();
   if (!(dt_next_ > 0.0) || !std::isfinite(dt_next_)) {
     throw std::runtime_error("time step collapsed to " + std::to_string(dt_next_) +
                              " s at t = " + std::to_string(time_) + " s, step " + std::to_string(step_) +
@@ -531,6 +666,7 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   Progress progress(progress_options);
 
   const std::uint64_t first_step = sim->step_count();
+  const std::uint64_t first_updates = sim->particle_updates();
   auto last_checkpoint_wall = std::chrono::steady_clock::now();
   const auto& p = sim->particles();
   if (!summary.resumed) {
@@ -577,9 +713,9 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
       last_checkpoint_wall = now;
     }
     summary.crater_growth_ended = check_crater_growth();
-    progress.update(sim->time(), sim->step_count(), sim->next_time_step(), p.size());
+    progress.update(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
   }
-  progress.finish(sim->time(), sim->step_count(), sim->next_time_step(), p.size());
+  progress.finish(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
 
   // The final state: a snapshot (unless one was just written at this time) and a checkpoint, so that
   // --resume of a finished run does nothing and a longer end_time continues it.
@@ -625,10 +761,9 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   summary.steps_this_run = sim->step_count() - first_step;
   summary.time = sim->time();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  summary.particle_updates = sim->particle_updates() - first_updates;
   summary.particle_updates_per_second =
-      summary.wall_seconds > 0 ? static_cast<double>(summary.particles) *
-                                     static_cast<double>(summary.steps_this_run) / summary.wall_seconds
-                               : 0.0;
+      summary.wall_seconds > 0 ? static_cast<double>(summary.particle_updates) / summary.wall_seconds : 0.0;
   summary.mean_neighbours = sim->mean_neighbours();
   summary.relative_energy_error = relative_energy_error(sim->initial_conserved(), final_state);
   summary.relative_momentum_error = relative_momentum_error(sim->initial_conserved(), final_state);

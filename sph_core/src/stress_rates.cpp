@@ -12,20 +12,20 @@
 namespace craterkit::sph {
 
 void update_material_state(Particles& p, std::span<const Material> materials, RateWorkspace& workspace,
-                           std::vector<double>& shear_modulus) {
+                           std::vector<double>& shear_modulus, const ParticleSelection& selection) {
   for (const auto id : p.material) {
     if (id >= materials.size()) {
       throw std::out_of_range("particle material id " + std::to_string(id) + " has no material (" +
                               std::to_string(materials.size()) + " materials)");
     }
   }
-  const auto n = static_cast<std::int64_t>(p.size());
+  const auto n = static_cast<std::int64_t>(selection.size());
   workspace.inverse_density.resize(p.size());
   workspace.volume.resize(p.size());
   shear_modulus.resize(p.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+    const auto i = selection.at(static_cast<std::size_t>(ii));
     const double rho = p.density[i];
     const Material& material = materials[p.material[i]];
     MaterialState s =
@@ -69,11 +69,11 @@ void update_material_state(Particles& p, std::span<const Material> materials, Ra
 }
 
 void compute_stress_rates(Particles& p, const VelocityGradients& gradients,
-                          std::span<const double> shear_modulus) {
-  const auto n = static_cast<std::int64_t>(p.size());
+                          std::span<const double> shear_modulus, const ParticleSelection& selection) {
+  const auto n = static_cast<std::int64_t>(selection.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+    const auto i = selection.at(static_cast<std::size_t>(ii));
     const double G = shear_modulus[i];
     if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0 || !(G > 0.0)) {
       p.stress_rate_xx[i] = p.stress_rate_xy[i] = p.stress_rate_xz[i] = 0.0;
@@ -96,11 +96,11 @@ void compute_stress_rates(Particles& p, const VelocityGradients& gradients,
 }
 
 void limit_compaction(Particles& p, std::span<const Material> materials,
-                      std::span<const double> distention_before) {
-  const auto n = static_cast<std::int64_t>(p.size());
+                      std::span<const double> distention_before, const ParticleSelection& selection) {
+  const auto n = static_cast<std::int64_t>(selection.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+    const auto i = selection.at(static_cast<std::size_t>(ii));
     const Material& material = materials[p.material[i]];
     const double before = distention_before[i];
     if (!material.porosity || !(p.distention[i] < before)) continue;
@@ -117,11 +117,12 @@ void limit_compaction(Particles& p, std::span<const Material> materials,
   }
 }
 
-void compute_distention_rates(Particles& p, std::span<const Material> materials) {
-  const auto n = static_cast<std::int64_t>(p.size());
+void compute_distention_rates(Particles& p, std::span<const Material> materials,
+                              const ParticleSelection& selection) {
+  const auto n = static_cast<std::int64_t>(selection.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+    const auto i = selection.at(static_cast<std::size_t>(ii));
     const Material& material = materials[p.material[i]];
     double rate = 0.0;
     if (material.porosity && (p.flags[i] & (particle_fixed | particle_ejected)) == 0) {

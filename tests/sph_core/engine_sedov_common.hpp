@@ -24,9 +24,13 @@ struct SedovMeasurement {
   double momentum_error;   // relative
   std::uint64_t steps;
   double mean_neighbours;
+  std::uint64_t particle_updates;
 };
 
-inline SedovMeasurement run_sedov(int particles_per_side) {
+// density: summation (the example's) or continuity; block_levels: block time steps (0: global step).
+inline SedovMeasurement run_sedov(
+    int particles_per_side, craterkit::sph::DensityMethod density = craterkit::sph::DensityMethod::summation,
+    int block_levels = 0) {
   using namespace craterkit::sph;
   SimulationConfig config;
   SedovSetup setup;
@@ -35,7 +39,9 @@ inline SedovMeasurement run_sedov(int particles_per_side) {
   config.setup = setup;
   config.run.end_time = 0.05;
   config.smoothing.max_smoothing_length = 0.1;
-  config.density = DensityMethod::summation;
+  config.density = density;
+  config.time_step.block_levels = block_levels;
+  if (block_levels > 0) config.neighbours.search.skin = 0.1;
   config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
   auto sim = run_to(config, 0.05);
   const auto& p = sim.particles();
@@ -79,6 +85,7 @@ inline SedovMeasurement run_sedov(int particles_per_side) {
   m.momentum_error = relative_momentum_error(sim.initial_conserved(), now);
   m.steps = sim.step_count();
   m.mean_neighbours = sim.mean_neighbours();
+  m.particle_updates = sim.particle_updates();
   return m;
 }
 

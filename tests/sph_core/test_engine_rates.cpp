@@ -221,12 +221,55 @@ TEST(Rates, ViscositySwitchDecaysAwayFromShocksAndGrowsInCompression) {
   EXPECT_GT(c.p.viscosity_alpha_rate[200], 0.0);
 }
 
+// Balsara (1995) limiter: in simple shear (v_x = y: |curl v| = 1, div v = 0) the factor falls to ~0 and
+// with it the viscous heating; in uniform compression (v = -x: div v = -3, curl 0) it is ~1 and the
+// heating is that of the plain viscosity. Both for the fluid and the solid pair loop.
+TEST(Rates, BalsaraFactorRemovesTheViscosityOfShearAndKeepsThatOfCompression) {
+  for (const bool solid : {false, true}) {
+    Cloud c = random_cloud(10, 8, 0.0, false);
+    RateOptions plain, limited;
+    plain.solid = limited.solid = solid;
+    limited.viscosity.balsara = true;
+    VelocityGradients g;
+    const auto interior = [&](std::size_t i) {
+      const auto& q = c.p;
+      return q.x[i] > 3 && q.x[i] < 6 && q.y[i] > 3 && q.y[i] < 6 && q.z[i] > 3 && q.z[i] < 6;
+    };
+    for (std::size_t i = 0; i < c.p.size(); ++i) c.p.vx[i] = c.p.y[i];  // shear
+    rates(c, plain, &g);
+    const auto plain_heating = c.p.energy_rate;
+    rates(c, limited, &g);  // first evaluation: the factors of the particles start at 1
+    rates(c, limited, &g);  // now with the factors of the shear flow
+    int n = 0;
+    for (std::size_t i = 0; i < c.p.size(); ++i) {
+      if (!interior(i)) continue;
+      ++n;
+      EXPECT_LT(c.p.balsara[i], 1e-3) << "shear, particle " << i;
+      ASSERT_GT(plain_heating[i], 0.0);
+      EXPECT_LT(c.p.energy_rate[i], 1e-3 * plain_heating[i]) << "shear, particle " << i;
+    }
+    EXPECT_GT(n, 0);
+    for (std::size_t i = 0; i < c.p.size(); ++i) {  // uniform compression
+      c.p.vx[i] = -c.p.x[i];
+      c.p.vy[i] = -c.p.y[i];
+      c.p.vz[i] = -c.p.z[i];
+    }
+    rates(c, limited, &g);
+    for (std::size_t i = 0; i < c.p.size(); ++i) {
+      if (interior(i)) {
+        EXPECT_GT(c.p.balsara[i], 0.99) << "compression, particle " << i;
+      }
+    }
+  }
+}
+
 TEST(Rates, IndependentOfThreadCount) {
   Cloud one = random_cloud(12, 6, 0.3, true);
   Cloud two = one;
   RateOptions options;
   options.solid = true;
   options.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  options.viscosity.balsara = true;
   omp_set_num_threads(1);
   const auto s1 = rates(one, options);
   omp_set_num_threads(2);
@@ -237,6 +280,7 @@ TEST(Rates, IndependentOfThreadCount) {
   EXPECT_EQ(one.p.acceleration_x, two.p.acceleration_x);
   EXPECT_EQ(one.p.energy_rate, two.p.energy_rate);
   EXPECT_EQ(one.p.density_rate, two.p.density_rate);
+  EXPECT_EQ(one.p.balsara, two.p.balsara);
 }
 
 TEST(Rates, PeriodicLatticeIsTranslationInvariant) {

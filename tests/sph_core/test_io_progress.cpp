@@ -82,19 +82,19 @@ TEST(IoProgress, PrintsEveryIntervalWithRatesOverTheInterval) {
   sph::Progress progress(options, log, [&] { return wall; });
   EXPECT_FALSE(progress.is_terminal());
 
-  progress.update(0.0, 0, 1e-3, 1000);  // starts the clock
+  progress.update(0.0, 0, 1e-3, 0);  // starts the clock (1000 particles: 1000 updates per step)
   wall = 105;
-  progress.update(0.05, 10, 1e-3, 1000);  // too early: nothing
+  progress.update(0.05, 10, 1e-3, 10000);  // too early: nothing
   EXPECT_EQ(contents(log), "");
   wall = 110;
-  progress.update(0.1, 20, 1e-3, 1000);
+  progress.update(0.1, 20, 1e-3, 20000);
   // 1000 particles x 20 steps in 10 s = 2000 /s; 0.1 s simulated in 10 s, 0.4 s left -> 40 s.
   EXPECT_EQ(
       contents(log),
       "t 1.0000e-01 / 5.0000e-01 s  step 20  dt 1.000e-03 s  2.000e+03 particle-updates/s  left 0:00:40\n");
   std::fseek(log, 0, SEEK_END);
   wall = 130;
-  progress.finish(0.5, 100, 1e-3, 1000);  // whole run: 1e5 updates in 30 s
+  progress.finish(0.5, 100, 1e-3, 100000);  // whole run: 1e5 updates in 30 s
   EXPECT_NE(contents(log).find("step 100  dt 1.000e-03 s  3.333e+03 particle-updates/s  left 0:00:00\n"),
             std::string::npos);
   std::fclose(log);
@@ -109,9 +109,9 @@ TEST(IoProgress, SilencedPrintsNothing) {
   sph::Progress progress(options, log, [&] { return wall; });
   for (int step = 0; step < 5; ++step) {
     wall += 100;
-    progress.update(step, static_cast<std::uint64_t>(step), 1, 10);
+    progress.update(step, static_cast<std::uint64_t>(step), 1, 10u * static_cast<std::uint64_t>(step));
   }
-  progress.finish(5, 5, 1, 10);
+  progress.finish(5, 5, 1, 50);
   EXPECT_EQ(contents(log), "");
   std::fclose(log);
 }

@@ -240,6 +240,52 @@ TEST(NeighbourSearch, RebuildCriterionIsSufficient) {
   EXPECT_TRUE(search.needs_rebuild(Cloud{}.input()));  // particle count changed
 }
 
+// Block time steps: build_for lists only the queried particles, exactly (no skin), at the current
+// positions, through a refit octree while the motion since its build is within the skin, and through a new
+// one after; the lists equal brute force for the queried particles and are empty for the others.
+TEST(NeighbourSearch, ListsForQueriesThroughRefitsEqualBruteForce) {
+  Cloud c = random_cloud(3000, 0.02, 0.06, 0.01, 21);
+  const Box box{};  // open
+  NeighbourSearchOptions options;
+  options.skin = 0.3;
+  NeighbourSearch search(options);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  NeighbourLists lists;
+  std::uint64_t restructures_seen = 0;
+  for (int round = 0; round < 12; ++round) {
+    std::vector<std::uint32_t> queries;
+    for (std::uint32_t i = 0; i < c.x.size(); ++i) {
+      if ((i * 7 + std::uint32_t(round)) % 5 == 0) queries.push_back(i);
+    }
+    search.build_for(c.input(), box, queries, lists, round == 0);
+    const auto ref = brute_force(c, box, 0.0);
+    ASSERT_EQ(lists.particle_count(), c.x.size());
+    std::size_t at = 0;
+    for (std::uint32_t i = 0; i < c.x.size(); ++i) {
+      const bool queried = at < queries.size() && queries[at] == i;
+      if (queried) ++at;
+      auto got = std::vector<std::uint32_t>(lists.of(i).begin(), lists.of(i).end());
+      std::sort(got.begin(), got.end());
+      if (queried) {
+        ASSERT_EQ(got, ref[i]) << "round " << round << ", particle " << i;
+      } else {
+        ASSERT_TRUE(got.empty()) << "round " << round << ", particle " << i;
+      }
+    }
+    restructures_seen = search.restructures();
+    // Motion of a few per cent of h per round and growing h: some rounds refit, a later one rebuilds.
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      c.x[i] += 0.004 * unit(rng);
+      c.y[i] += 0.004 * unit(rng);
+      c.z[i] += 0.004 * unit(rng);
+      c.h[i] *= 1.0 + 0.01 * (unit(rng) + 1.0);
+    }
+  }
+  EXPECT_GT(restructures_seen, 1u);   // the skin was used up at some point
+  EXPECT_LT(restructures_seen, 12u);  // and the refits did the other rounds
+}
+
 TEST(NeighbourSearch, MinimumImageAndWrap) {
   const Box box{{-1, 0, 0}, {1, 10, 1}, {true, false, true}};
   EXPECT_DOUBLE_EQ(minimum_image(box, 0, 1.5), -0.5);

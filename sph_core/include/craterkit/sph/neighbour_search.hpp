@@ -155,6 +155,18 @@ class NeighbourSearch {
   // at least (1 + s)(h_i + h_j) from every particle i, as any unlisted pair (see add_mirror_images).
   [[nodiscard]] bool needs_rebuild(const NeighbourInput& input) const;
 
+  // Block time steps (block_time_steps.hpp): lists for the `queries` only, at the current positions and
+  // exact (r < h_i + h_j, no skin); every other particle's list is empty. The octree of the last build is
+  // kept and refit (its boxes tightened to the current positions and h) as long as no particle has moved
+  // more than the skin s h since that build (the criterion of needs_rebuild, summed over the refits;
+  // mirror images and the grouping rest on it), otherwise, or with `restructure` (after the particles were
+  // reordered), it is built afresh. So a call costs a pass over all particles plus the queried particles'
+  // pairs, not a whole build. Needs s > 0 to ever refit. Throws as build().
+  void build_for(const NeighbourInput& input, const Box& box, std::span<const std::uint32_t> queries,
+                 NeighbourLists& lists, bool restructure);
+  // Octree builds by build_for (the refits in between are the saving).
+  [[nodiscard]] std::uint64_t restructures() const { return restructures_; }
+
   // Frees the buffers only a build needs (sort keys, tree, candidates, per-thread scratch: about 40 bytes
   // per particle), keeping what needs_rebuild() reads (sorted copies of positions and h). For runs short of
   // memory: the pair loops then do not hold them; the next build allocates them again.
@@ -181,10 +193,15 @@ class NeighbourSearch {
   void add_mirror_images(const NeighbourInput& input, const Box& box, double h_max);
   void make_octree();
   void split_at_median(std::uint32_t begin, std::uint32_t end);
+  // Lists of every real particle (query_mark null) or of the marked ones (by original index), with pairs
+  // r < grow (h_i + h_j).
   template <bool Periodic>
-  void collect_pairs(const Box& box, NeighbourLists& lists);
+  void collect_pairs(const Box& box, NeighbourLists& lists, double grow, const std::uint8_t* query_mark);
   template <bool Periodic>
-  void candidates_octree(std::size_t g, const Box& box, std::vector<std::uint32_t>& out) const;
+  void candidates_octree(std::size_t g, const Box& box, std::vector<std::uint32_t>& out, double grow) const;
+  // build_for(): new positions into the tree; false when the motion since the build exceeds the skin.
+  bool refit(const NeighbourInput& input, const Box& box);
+  void reset_motion_budget();
 
   NeighbourSearchOptions options_;
   bool built_ = false;
@@ -213,6 +230,12 @@ class NeighbourSearch {
     std::size_t overflow_from = 0;  // first particle whose list went to `found`
   };
   std::vector<ThreadScratch> scratch_;
+  // build_for() only: the motion of each sorted entry since the build, its allowance s h, the queried
+  // particles and the groups that hold one.
+  bool refitting_ = false;
+  std::uint64_t restructures_ = 0;
+  std::vector<double> motion_used_, motion_budget_;
+  std::vector<std::uint8_t> query_mark_, group_has_query_;
 };
 
 }  // namespace craterkit::sph

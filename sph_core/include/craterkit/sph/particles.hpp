@@ -52,6 +52,8 @@ struct Particles {
 
   // Artificial viscosity coefficient per particle (for switches; constant alpha when none).
   std::vector<double> viscosity_alpha;
+  // Balsara factor f in [0, 1] of the viscosity (rates.hpp), from the last rate evaluation; 1 without.
+  std::vector<double> balsara;
 
   // Time derivatives from the last rate evaluation (rates.hpp). They are state, not scratch: the
   // second-order integrator (integrator.hpp) reuses them in the next step, so checkpoints must
@@ -60,6 +62,11 @@ struct Particles {
   std::vector<double> density_rate;                                    // drho/dt, kg/m^3/s
   std::vector<double> energy_rate;                                     // du/dt, W/kg
   std::vector<double> viscosity_alpha_rate;                            // dalpha/dt, 1/s
+  // The step this particle may take on its own, s (time_step.hpp: the smallest of its Courant,
+  // acceleration, density, energy and velocity-change limits) from its last rate evaluation. State for
+  // block time steps (block_time_steps.hpp: the next block's levels come from it, also after a restart);
+  // with a global step it shows which particles hold the step down.
+  std::vector<double> time_step;
   // Solid mechanics (stress_rates.hpp; only while solid_fields): the Jaumann rate dS/dt, Pa/s, and the
   // rate of the accumulated strain, 1/s.
   std::vector<double> stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz;
@@ -101,12 +108,14 @@ struct Particles {
     visit(std::string_view{"sound_speed"}, sound_speed);
     visit(std::string_view{"distention"}, distention);
     visit(std::string_view{"viscosity_alpha"}, viscosity_alpha);
+    visit(std::string_view{"balsara"}, balsara);
     visit(std::string_view{"acceleration_x"}, acceleration_x);
     visit(std::string_view{"acceleration_y"}, acceleration_y);
     visit(std::string_view{"acceleration_z"}, acceleration_z);
     visit(std::string_view{"density_rate"}, density_rate);
     visit(std::string_view{"energy_rate"}, energy_rate);
     visit(std::string_view{"viscosity_alpha_rate"}, viscosity_alpha_rate);
+    visit(std::string_view{"time_step"}, time_step);
     if (solid_fields) for_each_solid_field(visit);
   }
   // The solid-mechanics group alone (visited whether or not it is allocated).

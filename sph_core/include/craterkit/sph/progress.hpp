@@ -24,7 +24,7 @@ struct ProgressSample {
   double end_time = 0;  // s (0: unknown)
   std::uint64_t step = 0;
   double dt = 0;                           // s
-  double particle_updates_per_second = 0;  // particles x steps / wall s over the last interval
+  double particle_updates_per_second = 0;  // particle updates / wall s over the last interval
   double seconds_left = -1;                // wall s; negative: unknown
 };
 
@@ -37,17 +37,18 @@ class Progress {
   // clock: wall time in seconds (steady clock by default; tests pass their own).
   explicit Progress(ProgressOptions options, std::FILE* stream = stderr, std::function<double()> clock = {});
 
-  // Call once per completed step with the state after the step. Prints when due.
-  void update(double time, std::uint64_t step, double dt, std::size_t particles);
+  // Call once per completed step with the state after the step and the number of particle updates so far
+  // (Simulation::particle_updates(): particles x steps with a global step). Prints when due.
+  void update(double time, std::uint64_t step, double dt, std::uint64_t particle_updates);
   // Prints the final state with the rate averaged over the whole run (on a terminal: ends the line).
   // Call once at the end of the run.
-  void finish(double time, std::uint64_t step, double dt, std::size_t particles);
+  void finish(double time, std::uint64_t step, double dt, std::uint64_t particle_updates);
 
   [[nodiscard]] bool is_terminal() const { return terminal_; }
 
  private:
-  ProgressSample sample(double time, std::uint64_t step, double dt, std::size_t particles, double now,
-                        double since_wall, double since_time, std::uint64_t since_step) const;
+  ProgressSample sample(double time, std::uint64_t step, double dt, std::uint64_t updates, double now,
+                        double since_wall, double since_time, std::uint64_t since_updates) const;
   void print(const ProgressSample& s, bool final_line);
 
   ProgressOptions options_;
@@ -57,10 +58,10 @@ class Progress {
   bool started_ = false;
   double last_print_wall_ = 0;
   double last_print_time_ = 0;
-  std::uint64_t last_print_step_ = 0;
+  std::uint64_t last_print_updates_ = 0;
   double start_wall_ = 0;  // first update(): the origin of the whole-run rate
   double start_time_ = 0;
-  std::uint64_t start_step_ = 0;
+  std::uint64_t start_updates_ = 0;
 };
 
 }  // namespace craterkit::sph

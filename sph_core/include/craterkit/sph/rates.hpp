@@ -48,6 +48,7 @@
 
 #include "craterkit/sph/kernel.hpp"
 #include "craterkit/sph/mirror_image.hpp"
+#include "craterkit/sph/particle_selection.hpp"
 #include "craterkit/sph/particles.hpp"
 
 namespace craterkit::sph {
@@ -65,6 +66,10 @@ struct ArtificialViscosity {
   double alpha_min = 0.1;     // floor the switch decays to away from shocks
   double decay_factor = 0.2;  // l in the decay time tau = h / (l c) of Morris & Monaghan
   double epsilon = 0.01;      // eta^2 regulariser in mu_ij = hbar v.x / (r^2 + eps hbar^2)
+  // Balsara (1995) limiter: Pi_ij times (f_i + f_j)/2, f = |div v| / (|div v| + |curl v| + 1e-4 c/h), so
+  // that shear flow (f -> 0) carries no viscosity while compression (f -> 1) keeps it. f is each
+  // particle's value from its last rate evaluation (Particles::balsara).
+  bool balsara = false;
 };
 
 struct RateOptions {
@@ -104,6 +109,13 @@ struct RateWorkspace {
   std::vector<double> volume;           // m/rho
   // Output of the pair pass: pairs with r < h_i + h_j per particle (drives the smoothing length).
   std::vector<std::uint32_t> neighbour_count;
+  // Output of the pair pass: h_i / (c_i + 1.2 (alpha_i c_i + beta_i max_j |mu_ij|)) per particle, s (the
+  // Courant time before the factor C; +infinity for fixed and ejected particles). Block time steps
+  // (block_time_steps.hpp) give each particle its own step from it.
+  std::vector<double> signal_time;
+  // The Balsara factors computed by the pass (ArtificialViscosity::balsara), copied to Particles::balsara
+  // after it.
+  std::vector<double> balsara_next;
 };
 
 struct RateSummary {
@@ -119,6 +131,11 @@ struct RateSummary {
 // workspace.neighbour_count.
 RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                           RateWorkspace& workspace, VelocityGradients* gradients = nullptr);
+// The same for the selected particles only (block time steps): every other particle's rates, neighbour
+// count and signal time are left as they were; the neighbours j of a selected particle are all particles.
+RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                          RateWorkspace& workspace, const ParticleSelection& selection,
+                          VelocityGradients* gradients = nullptr);
 
 [[nodiscard]] std::string_view viscosity_switch_name(ViscositySwitch s) noexcept;
 

@@ -14,6 +14,6 @@ namespace craterkit::sph {
 // equations_of_state[m] is the law of material id m. Fixed particles are evaluated too (they
 // exert pressure on their neighbours). Throws std::out_of_range for a material id without a law.
 void update_pressure(Particles& particles, std::span<const EquationOfState> equations_of_state,
-                     RateWorkspace& workspace);
+                     RateWorkspace& workspace, const ParticleSelection& selection);
 
 }  // namespace craterkit::sph

@@ -48,6 +48,7 @@
 #include <utility>
 #include <vector>
 
+#include "craterkit/sph/block_time_steps.hpp"
 #include "craterkit/sph/config.hpp"
 #include "craterkit/sph/conservation_log.hpp"
 #include "craterkit/sph/crater_measurement.hpp"
@@ -108,6 +109,11 @@ class Simulation {
   // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
   [[nodiscard]] double bytes_per_particle() const;
   [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
+  // Particle updates (one per particle and rate evaluation of its own step) since construction: particles
+  // x steps with a global step, the sum over substeps of the particles whose step ended with block steps.
+  [[nodiscard]] std::uint64_t particle_updates() const { return particle_updates_; }
+  // Block time steps: the schedule of the last block (levels, finest level).
+  [[nodiscard]] const BlockSchedule& block_schedule() const { return schedule_; }
   // Particles not ejected (they come first in the arrays).
   [[nodiscard]] std::size_t active_particles() const { return active_; }
   [[nodiscard]] const ProblemSetup& problem() const { return problem_; }
@@ -126,9 +132,23 @@ class Simulation {
   void force_neighbour_rebuild() { force_rebuild_ = true; }
 
  private:
-  void configure();  // shared by both constructors: laws, rate options, particle storage
-  void evaluate_rates();
+  void configure();          // shared by both constructors: laws, rate options, particle storage
+  void update_neighbours();  // rebuilds the lists when the skin no longer covers the motion
+  // Block time steps: exact lists of the given particles only (NeighbourSearch::build_for).
+  void update_neighbours(std::span<const std::uint32_t> queries);
+  void evaluate_rates();  // neighbours, then the state and the rates of every particle
+  // The state (equation of state, returns to the yield surface and the crush curve) of `state_for` and
+  // the rates of `rates_for`; the lists must be current.
+  void evaluate_rates(const ParticleSelection& rates_for, const ParticleSelection& state_for);
   void update_equation_of_state();
+  void update_equation_of_state(const ParticleSelection& selection);
+  void advance_block(double block);  // block time steps (block_time_steps.hpp) over one block
+  // The given particles and all their neighbours (block time steps: whose state an active particle reads).
+  ParticleSelection neighbourhood_of(std::span<const std::uint32_t> particles);
+  [[nodiscard]] TimeStepParameters time_step_parameters() const;
+  // The next step (global) or block: the longest particle step, at most 2^block_levels times the
+  // shortest and at most max_step (block_levels = 0: the shortest, the global step).
+  [[nodiscard]] double next_block_length() const;
   void switch_to_late_stage();  // the materials and the fluid laws (no logging, no rate evaluation)
   void eject();                 // flags, records and moves ejecta behind the active particles
   void keep_pressure_across_switch();
@@ -145,6 +165,11 @@ class Simulation {
   std::vector<double> shear_modulus_;  // solid runs only: G per particle, Pa
   IntegratorWorkspace integrator_workspace_;
   std::vector<std::uint32_t> order_;
+  BlockSchedule schedule_;
+  std::vector<std::uint8_t> needed_mark_;   // block steps: scratch of neighbourhood_of()
+  std::vector<std::uint32_t> needed_list_;  // block steps: the particles whose state is read
+  std::vector<std::uint32_t> all_indices_;  // block steps: 0 .. active_-1
+  std::uint64_t particle_updates_ = 0;
   PhaseTimers timers_;
   RateSummary rate_summary_{};
   TimeStepLimits limits_{};
@@ -177,7 +202,9 @@ struct SimulationSummary {
   std::uint64_t steps_this_run = 0;  // steps taken by this invocation
   double time = 0.0;                 // s, simulated
   double wall_seconds = 0.0;
-  double particle_updates_per_second = 0.0;  // particles x steps_this_run / wall_seconds
+  double particle_updates_per_second = 0.0;  // particle updates of this run / wall_seconds (particles x
+                                             // steps with a global step; Simulation::particle_updates())
+  std::uint64_t particle_updates = 0;        // of this run
   double mean_neighbours = 0.0;
   double relative_energy_error = 0.0;
   double relative_momentum_error = 0.0;

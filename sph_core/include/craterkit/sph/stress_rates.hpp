@@ -24,6 +24,8 @@
 //    excludes (alpha never increases).
 //  - The stress S is the bulk deviatoric stress, evolved with the reduced G(alpha); it is not divided
 //    by alpha again in the momentum equation.
+// Each function works on the selected particles only (all of them with a global time step, those whose
+// step ends now with block time steps) and leaves the others untouched.
 #include <span>
 #include <vector>
 
@@ -38,12 +40,13 @@ namespace craterkit::sph {
 // stress of every particle and the return to the crush curve to the distention of porous ones. Throws
 // std::out_of_range for a material id without a material.
 void update_material_state(Particles& particles, std::span<const Material> materials,
-                           RateWorkspace& workspace, std::vector<double>& shear_modulus);
+                           RateWorkspace& workspace, std::vector<double>& shear_modulus,
+                           const ParticleSelection& selection);
 
 // dS/dt and d(total strain)/dt of every active particle from the corrected gradient of the last rate
 // pass (zero for fixed and ejected particles, and no strain accumulates where G = 0).
 void compute_stress_rates(Particles& particles, const VelocityGradients& gradients,
-                          std::span<const double> shear_modulus);
+                          std::span<const double> shear_modulus, const ParticleSelection& selection);
 
 // After the corrector: a porous particle whose distention fell in the step below the crush-curve value of
 // its new state (the distention that puts the state reached from alpha^n = distention_before on the
@@ -53,11 +56,12 @@ void compute_stress_rates(Particles& particles, const VelocityGradients& gradien
 // can never undo (alpha only decreases). The bound is the backward-Euler (return-mapping) solution of the
 // crush-curve constraint; in smooth compaction the trapezoid meets it to O(dt^2).
 void limit_compaction(Particles& particles, std::span<const Material> materials,
-                      std::span<const double> distention_before);
+                      std::span<const double> distention_before, const ParticleSelection& selection);
 
 // dalpha/dt (Particles::distention_rate) of every active porous particle from its current state and the
 // drho/dt and du/dt of the last rate pass; zero for non-porous, fixed and ejected particles.
 // Requires the solid group (Particles::solid_fields) and pressure from update_material_state().
-void compute_distention_rates(Particles& particles, std::span<const Material> materials);
+void compute_distention_rates(Particles& particles, std::span<const Material> materials,
+                              const ParticleSelection& selection);
 
 }  // namespace craterkit::sph

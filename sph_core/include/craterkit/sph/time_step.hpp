@@ -12,9 +12,12 @@
 // times heavier): the viscous force on the light particle then stops it on a time far below h/c and
 // below sqrt(h/|a|) (the drag's time is |v|/|a|), and an explicit step longer than that overshoots and
 // blows up (docs/impact_setup.md, "Time step"). For particles of similar mass it does not bind. The Courant
-// part comes from the rate pass (RateSummary::min_signal_time), which already has max|mu| per particle.
+// part comes from the rate pass (RateWorkspace::signal_time), which already has max|mu| per particle.
+#include <cstddef>
 #include <limits>
+#include <span>
 
+#include "craterkit/sph/particle_selection.hpp"
 #include "craterkit/sph/particles.hpp"
 #include "craterkit/sph/rates.hpp"
 
@@ -28,6 +31,9 @@ struct TimeStepParameters {
   double energy_floor = 0.0;          // u_floor, J/kg; the energy limit applies only when > 0
   double velocity_change = 0.0;       // k_v; 0 disables the velocity-change limit
   double max_step = std::numeric_limits<double>::infinity();  // s
+  // Block time steps (block_time_steps.hpp): 0 = one global step; N > 0 = particles take power-of-two
+  // fractions of a block that is at most 2^N times the shortest particle step.
+  int block_levels = 0;
 };
 
 struct TimeStepLimits {
@@ -39,8 +45,16 @@ struct TimeStepLimits {
   [[nodiscard]] double step(double max_step) const;  // the smallest, capped at max_step
 };
 
-// The limits over the active (neither fixed nor ejected) particles; the rates must be current.
-TimeStepLimits time_step_limits(const Particles& particles, const RateSummary& rates,
-                                const TimeStepParameters& parameters);
+// For each selected moving particle: its own limits (particle_time_step_limits) and
+// Particles::time_step = their smallest, capped at max_step (+infinity for fixed and ejected particles);
+// returns each limit's minimum over the selection (the global step's limits when all are selected). The
+// rates and signal_time (RateWorkspace::signal_time) must be those of the particles' last evaluation.
+TimeStepLimits update_time_steps(Particles& particles, std::span<const double> signal_time,
+                                 const TimeStepParameters& parameters, const ParticleSelection& selection);
+
+// The same limits for particle i alone, from its own rates and its signal time h_i / signal_i
+// (RateWorkspace::signal_time): the step it may take with block time steps (block_time_steps.hpp).
+TimeStepLimits particle_time_step_limits(const Particles& particles, std::size_t i, double signal_time,
+                                         const TimeStepParameters& parameters);
 
 }  // namespace craterkit::sph
