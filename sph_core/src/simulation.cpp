@@ -620,7 +620,12 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   auto check_crater_growth = [&]() {
     if (!scenario.impact || sim->time() < next_check) return false;
     auto scope = sim->timers().measure("crater");
-    const CraterMeasurement m = measure_crater(sim->particles(), measurement);
+    // The radius alone (the mean of the +-x and +-y rays): the four axis rays, which are the same sample
+    // columns as in the full measurement (its azimuths are multiples of 2 pi / n_azimuths), so the
+    // same radius at a sixteenth of the cost.
+    CraterMeasurementOptions axes = measurement;
+    axes.n_azimuths = 4;
+    const CraterMeasurement m = measure_crater(sim->particles(), axes);
     const CraterGrowthSample sample{sim->time(), sim->step_count(), m.crater_radius,
                                     moving_kinetic_energy(sim->particles())};
     growth.push_back(sample);

@@ -371,6 +371,13 @@ TEST(CraterMeasurement, AsymmetricRimGivesTheFourRadii) {
   EXPECT_NEAR(m.radius_spread, spread, 0.1 * dx);
   EXPECT_NEAR(m.crater_radius_uncertainty,
               std::sqrt(0.25 * m.radius_spread * m.radius_spread + 0.25 * dx * dx), 1e-12);
+  // The run's growth checks measure the four axis rays only (n_azimuths = 4): the same sample columns,
+  // hence the same four radii and crater radius, to the bit.
+  CraterMeasurementOptions axes = options();
+  axes.n_azimuths = 4;
+  const CraterMeasurement four = measure_crater(p, axes);
+  EXPECT_EQ(four.radii, m.radii);
+  EXPECT_EQ(four.crater_radius, m.crater_radius);
   // The rim crests of the four directions: heights 4 s w / 27 with s = 2 d / R(phi), less the
   // curvature offset (|f''| = 2 s / w at the crest) as in the axisymmetric bowls.
   for (int dir = 0; dir < 4; ++dir) {
