@@ -4,7 +4,8 @@
 Usage: plot_crater_runs.py OUT.png LABEL=RUN_DIR [LABEL=RUN_DIR ...] [--scale L] [--title TEXT]
 
 Left: crater radius against time (crater_growth.csv); right: the azimuthally averaged final surface
-profile z(r) (crater_profile.csv), with the measured crater radius marked. --scale divides lengths by L
+profile z(r) (crater_profile.csv), with the measured crater radius marked (runs stopped before their end
+have no profile: growth curve only). RUN_DIR needs crater_growth.csv. --scale divides lengths by L
 (e.g. the predicted radius) so that runs of different sizes share the axes.
 """
 import csv
@@ -45,6 +46,8 @@ def main(argv):
         t = [float(r["time"]) for r in growth]
         radius = [float(r["crater_radius"]) / scale for r in growth]
         line, = left.plot(t, radius, label=label)
+        if not os.path.isfile(os.path.join(directory, "crater_profile.csv")):
+            continue  # a run stopped before its end: growth curve only
         profile = read_rows(os.path.join(directory, "crater_profile.csv"))
         r = [float(p["radius_m"]) / scale for p in profile]
         z = [float(p["mean_height_m"]) / scale for p in profile]

@@ -16,6 +16,7 @@
 #include "craterkit/sph/checkpoint.hpp"
 #include "craterkit/sph/crater_growth.hpp"
 #include "craterkit/sph/deviatoric_stress.hpp"
+#include "craterkit/sph/mirror_reflection.hpp"
 #include "craterkit/sph/progress.hpp"
 #include "craterkit/sph/rates_pressure.hpp"
 #include "craterkit/sph/space_filling_curve.hpp"
@@ -451,6 +452,7 @@ void Simulation::step(double target_time) {
                               ParticleSelection::all(p.size()));
   time_ = land ? target_time : time_ + dt;
   ++step_;
+  if (reflect_across_mirror_planes(p, problem_.box) > 0) force_rebuild_ = true;
   eject();
   const auto mach = [&] {
     auto scope = timers_.measure("diagnostics");
