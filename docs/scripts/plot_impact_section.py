@@ -56,7 +56,7 @@ def main(argv):
     if len(argv) < 3 or not runs:
         print(__doc__)
         return 2
-    fig, axes = plt.subplots(len(runs), 1, figsize=(11, 3.2 * len(runs)), squeeze=False)
+    fig, axes = plt.subplots(len(runs), 1, figsize=(8.5, 2.9 * len(runs)), squeeze=False)
     for ax, (label, run_dir, time) in zip(axes[:, 0], runs):
         with h5py.File(os.path.join(run_dir, "snap_000000.h5"), "r") as f:
             ids0, z0 = f["id"][:], f["z"][:]
