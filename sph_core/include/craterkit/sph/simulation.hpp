@@ -29,11 +29,10 @@
 // both are scaled by sqrt(A_low/A) (K and G both scale by A_low/A; a plane wave's stress is its impedance
 // times its particle velocity, and the impedance scales by the same factor). Keeping them unscaled would
 // multiply that energy by A/A_low (1e6 for the SCI target): measured on sci.toml, 480 J appeared at the
-// switch (the crater flow then carried about 2,000 J), heaved the whole target by up to 2 m over 100 s and
-// opened a "crater" of loosened material (docs/validation.md, "Impact craters"). The matrix strain alpha P /
-// A_low stays capped at
-// +-late_stage_max_reference_strain, and the elastic shear strain sqrt(J2)/(2 G) under the new G at the same
-// 0.1 (cap_elastic_shear_strain()).
+// switch (the crater flow then carried about 2,000 J), heaved the whole target by metres over 100 s and
+// opened a "crater" of loosened material (docs/validation.md, "Impact craters"). The matrix strain
+// alpha P / A_low stays capped at +-late_stage_max_reference_strain, and the elastic shear strain
+// sqrt(J2)/(2 G) under the new G at the same 0.1 (cap_elastic_shear_strain()).
 // The switch is logged on stderr with the largest Mach number |v|/c just after it; the largest Mach
 // number over the late stage is tracked every step. Both go into the attributes of later snapshots and
 // checkpoints (record_late_stage(), plus "late_stage_max_mach"), and a run resumed from a checkpoint
