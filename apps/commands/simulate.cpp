@@ -25,6 +25,7 @@ struct SimulateOptions {
   bool resume = false;
   bool json = false;
   bool quiet = false;
+  bool dry_run = false;
 };
 
 // NaN (no crater found) as null.
@@ -80,6 +81,31 @@ void run_simulate(const SimulateOptions& options) {
     throw InputError("--resume needs --out DIR (where the checkpoint is)");
   const sph::SimulationConfig config = sph::load_simulation_config(options.config);
   if (options.threads > 0) omp_set_num_threads(options.threads);
+  if (options.dry_run) {
+    // The set-up only: what a run would simulate, to size it before it starts. Nothing is written.
+    const sph::Scenario scenario = sph::build_scenario(config);
+    const auto& p = scenario.problem.particles;
+    std::size_t fixed = 0;
+    for (const auto flag : p.flags) fixed += (flag & sph::particle_fixed) != 0 ? 1 : 0;
+    if (options.json) {
+      nlohmann::json out = {{"name", config.name},
+                            {"setup", sph::setup_name(config.setup)},
+                            {"particles", p.size()},
+                            {"fixed_particles", fixed},
+                            {"end_time", config.run.end_time}};
+      if (scenario.impact) {
+        out["target_particles"] = scenario.impact->target_particles;
+        out["projectile_particles"] = scenario.impact->projectile_particles;
+        out["t_transition"] = scenario.impact->transition_time;
+      }
+      std::cout << out.dump(2) << "\n";
+      return;
+    }
+    if (scenario.impact) fmt::print("{}", sph::describe_impact(*scenario.impact));
+    fmt::print("{} ({}): {} particles ({} fixed), end time {:.6g} s; dry run, nothing simulated or written\n",
+               config.name, sph::setup_name(config.setup), p.size(), fixed, config.run.end_time);
+    return;
+  }
   sph::RunOptions run;
   run.output_directory = options.out;
   run.resume = options.resume;
@@ -122,6 +148,9 @@ void add_simulate_command(CLI::App& parent) {
   sub->add_flag("--resume", options->resume, "Continue from DIR/checkpoint.h5 when it exists");
   sub->add_flag("--json", options->json, "Print the final summary as a JSON object");
   sub->add_flag("--quiet", options->quiet, "No progress line");
+  sub->add_flag("--dry-run", options->dry_run,
+                "Build the set-up and report it (particle counts; for impacts the target, projectile and "
+                "late-stage plan), then stop: nothing is simulated or written");
   sub->footer(
       "Prints a progress line on stderr and per-phase timings at the end. Snapshots are HDF5 with XDMF "
       "sidecars "

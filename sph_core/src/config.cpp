@@ -147,8 +147,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     // target as for the coarse ones.
     const bool impact_setup = std::holds_alternative<ImpactSetup>(c.setup);
     c.smoothing.max_smoothing_length = s.number("max_smoothing_length", inf, 0.0, inf, true);
-    c.smoothing.max_smoothing_ratio =
-        s.number("max_smoothing_ratio", impact_setup ? 3.0 : inf, 1.0, inf);
+    c.smoothing.max_smoothing_ratio = s.number("max_smoothing_ratio", impact_setup ? 3.0 : inf, 1.0, inf);
     c.smoothing.neighbour_band = s.number("neighbour_band", c.smoothing.neighbour_band, 0.0, 1.0, true);
     const std::string density = s.text("density", "continuity", {"continuity", "summation"});
     c.density = density == "summation" ? DensityMethod::summation : DensityMethod::continuity;
@@ -162,14 +161,18 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     auto& v = c.viscosity;
     v.alpha = s.number("alpha", v.alpha, 0.0, 10.0);
     v.beta = s.number("beta", v.beta, 0.0, 20.0);
-    const std::string sw = s.text("switch", "none", {"none", "morris_monaghan"});
+    // Impacts default to the Morris-Monaghan switch with the Balsara limiter: with a constant alpha = 1
+    // the viscosity damps the excavation flow behind the shock within about a millisecond and the crater
+    // stays small (measured on the scaled SCI runs, docs/validation.md "Impact craters").
+    const bool impact = std::holds_alternative<ImpactSetup>(c.setup);
+    const std::string sw = s.text("switch", impact ? "morris_monaghan" : "none", {"none", "morris_monaghan"});
     v.viscosity_switch = sw == "morris_monaghan" ? ViscositySwitch::morris_monaghan : ViscositySwitch::none;
     v.alpha_min = s.number("alpha_min", v.alpha_min, 0.0, 10.0);
     if (v.alpha_min > v.alpha)
       s.fail("alpha_min", "value " + format_number(v.alpha_min) + " exceeds viscosity.alpha");
     v.decay_factor = s.number("decay_factor", v.decay_factor, 0.0, 10.0, true);
     v.epsilon = s.number("epsilon", v.epsilon, 0.0, 1.0, true);
-    v.balsara = s.boolean("balsara", v.balsara);
+    v.balsara = s.boolean("balsara", impact);
     s.finish();
   }
   {
@@ -190,7 +193,11 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     t.max_step = s.number("max_step", t.max_step, 0.0, inf, true);
     // Impacts default to the velocity-change limit (time_step.hpp: the light stand-in projectile).
     t.velocity_change = s.number("velocity_change", impact_setup_parameters != nullptr ? 0.1 : 0.0, 0.0, 1.0);
-    t.block_levels = static_cast<int>(s.integer("block_levels", 0, 0, 30));
+    // Impacts default to block time steps (8 levels: the finest particles of a graded target step up to 256
+    // times per step of the coarsest) when the density is integrated, which block steps need.
+    const int block_default =
+        impact_setup_parameters != nullptr && c.density == DensityMethod::continuity ? 8 : 0;
+    t.block_levels = static_cast<int>(s.integer("block_levels", block_default, 0, 30));
     if (t.block_levels > 0 && c.density == DensityMethod::summation) {
       s.fail("block_levels",
              "block time steps need kernel.density = \"continuity\" (a summed density would "

@@ -37,7 +37,13 @@ std::string format_progress(const ProgressSample& s) {
   std::snprintf(line, sizeof line, "%s  step %llu  dt %.3e s  %.3e particle-updates/s  left %s", time.c_str(),
                 static_cast<unsigned long long>(s.step), s.dt, s.particle_updates_per_second,
                 hours_minutes_seconds(s.seconds_left).c_str());
-  return line;
+  std::string text = line;
+  if (s.left_until > 0 && s.left_until != s.end_time && s.seconds_left >= 0) {
+    char until[64];
+    std::snprintf(until, sizeof until, " to t = %.4e s", s.left_until);
+    text += until;
+  }
+  return text;
 }
 
 Progress::Progress(ProgressOptions options, std::FILE* stream, std::function<double()> clock)
@@ -58,8 +64,9 @@ ProgressSample Progress::sample(double time, std::uint64_t step, double dt, std:
   s.particle_updates_per_second = wall > 0 ? static_cast<double>(updates - since_updates) / wall : 0;
   // Time left from the rate of simulated time over the last interval.
   const double simulated = time - since_time;
-  if (options_.end_time > 0 && wall > 0 && simulated > 0) {
-    s.seconds_left = std::max(0.0, options_.end_time - time) * wall / simulated;
+  s.left_until = options_.stage_end_time > time ? options_.stage_end_time : options_.end_time;
+  if (s.left_until > 0 && wall > 0 && simulated > 0) {
+    s.seconds_left = std::max(0.0, s.left_until - time) * wall / simulated;
   }
   return s;
 }

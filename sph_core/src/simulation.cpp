@@ -16,6 +16,7 @@
 #include "craterkit/sph/checkpoint.hpp"
 #include "craterkit/sph/crater_growth.hpp"
 #include "craterkit/sph/deviatoric_stress.hpp"
+#include "craterkit/sph/mirror_reflection.hpp"
 #include "craterkit/sph/progress.hpp"
 #include "craterkit/sph/rates_pressure.hpp"
 #include "craterkit/sph/space_filling_curve.hpp"
@@ -124,32 +125,50 @@ void Simulation::configure() {
   if (active_ < problem_.particles.size()) problem_.particles.permute(order_);
 }
 
-void Simulation::switch_to_late_stage() {
+std::vector<double> Simulation::switch_to_late_stage() {
   const auto& plan = problem_.late_stage;
   std::vector<Material> switched;
+  std::vector<double> stress_factor;
   for (std::size_t id = 0; id < problem_.materials.size(); ++id) {
-    switched.push_back(late_stage_material(problem_.materials[id], plan.A_low[id]));
+    const auto reference = solid_reference(problem_.materials[id].eos);
+    switched.push_back(late_stage_material(problem_.materials[id], plan.A_low[id]));  // throws for gases
+    stress_factor.push_back(std::sqrt(plan.A_low[id] / reference->bulk_modulus));
   }
   problem_.materials = std::move(switched);
   equations_of_state_.clear();
   for (const auto& m : problem_.materials) equations_of_state_.push_back(m.eos);
   late_stage_active_ = true;
+  return stress_factor;
 }
 
-void Simulation::keep_pressure_across_switch() {
+void Simulation::carry_stress_across_switch(const std::vector<double>& stress_factor) {
   auto& p = problem_.particles;
   const auto n = static_cast<std::int64_t>(p.size());
   constexpr double max_strain = late_stage_max_reference_strain;
+  const double g_down = std::max(0.0, -rate_options_.gravity[2]);
+  const bool solid = p.solid_fields;
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const auto* law = std::get_if<LowSoundSpeed>(&problem_.materials[p.material[i]].eos);
     if (law == nullptr) continue;
+    const double factor = stress_factor[p.material[i]];
+    // The lithostatic part is kept, the wave part scaled to keep its energy (simulation.hpp).
+    const double lithostatic = p.density[i] * g_down * std::max(0.0, -p.z[i]);
+    const double kept = std::clamp(p.pressure[i], 0.0, lithostatic);
+    const double pressure = kept + (p.pressure[i] - kept) * factor;
     // Matrix pressure P_m = alpha P (P-alpha, physics.md section 2) from the new law
     // P_m = A_low (rho_m / rho_m0 - 1): rho_m = rho_m0 (1 + alpha P / A_low), capped.
     const double alpha = p.distention[i];
-    const double strain = std::clamp(alpha * p.pressure[i] / law->A, -max_strain, max_strain);
+    const double strain = std::clamp(alpha * pressure / law->A, -max_strain, max_strain);
     p.density[i] = law->reference_density * (1.0 + strain) / alpha;
+    if (solid) {
+      p.stress_xx[i] *= factor;
+      p.stress_xy[i] *= factor;
+      p.stress_xz[i] *= factor;
+      p.stress_yy[i] *= factor;
+      p.stress_yz[i] *= factor;
+    }
   }
 }
 
@@ -433,14 +452,14 @@ void Simulation::step(double target_time) {
                               ParticleSelection::all(p.size()));
   time_ = land ? target_time : time_ + dt;
   ++step_;
+  if (reflect_across_mirror_planes(p, problem_.box) > 0) force_rebuild_ = true;
   eject();
   const auto mach = [&] {
     auto scope = timers_.measure("diagnostics");
     return max_mach_number(p.vx, p.vy, p.vz, p.sound_speed, p.flags).value;
   };
   if (plan.planned() && !late_stage_active_ && time_ >= plan.transition_time) {
-    switch_to_late_stage();
-    keep_pressure_across_switch();
+    carry_stress_across_switch(switch_to_late_stage());
     if (rate_options_.solid) {
       update_equation_of_state();  // the switched shear moduli per particle
       cap_elastic_shear_strain();
@@ -668,6 +687,8 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   ProgressOptions progress_options;
   progress_options.enabled = options.progress;
   progress_options.end_time = config.run.end_time;
+  if (sim->problem().late_stage.planned())
+    progress_options.stage_end_time = sim->problem().late_stage.transition_time;
   Progress progress(progress_options);
 
   const std::uint64_t first_step = sim->step_count();

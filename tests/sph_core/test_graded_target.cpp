@@ -750,18 +750,18 @@ ImpactSetup example_setup(const std::string& file) {
 }
 
 // The graded SCI examples: the resolved 2 kg projectile at dx0 = 0.028 m (32 particles of 2700 kg/m^3) and
-// the stand-in at dx0 = 0.05 m; both on a quarter domain with dx_max = 0.35 m.
+// the stand-in at dx0 = 0.056 m; both on a quarter domain with dx_max = 0.5 m.
 TEST(GradedTarget, SciGradedExamples) {
-  const ImpactScenario resolved = make_impact(example_setup("sci-graded.toml"), eta, 1.0, ryugu_gravity);
+  const ImpactScenario resolved = make_impact(example_setup("sci.toml"), eta, 1.0, ryugu_gravity);
   EXPECT_EQ(resolved.summary.model, ProjectileModel::resolved);
   EXPECT_EQ(resolved.summary.symmetry, DomainSymmetry::quarter);
   EXPECT_EQ(resolved.summary.projectile_particles, 8u);  // a quarter of 32
   EXPECT_EQ(resolved.summary.model_density, 2700.0);
-  std::printf("sci-graded.toml:\n%s", describe_impact(resolved.summary).c_str());
+  std::printf("sci.toml:\n%s", describe_impact(resolved.summary).c_str());
   const ImpactScenario stand_in =
       make_impact(example_setup("sci-graded-stand-in.toml"), eta, 1.0, ryugu_gravity);
   EXPECT_EQ(stand_in.summary.model, ProjectileModel::point_source_stand_in);
-  EXPECT_DOUBLE_EQ(stand_in.summary.model_radius, 0.1);
+  EXPECT_DOUBLE_EQ(stand_in.summary.model_radius, 2.0 * 0.056);
   std::printf("sci-graded-stand-in.toml:\n%s", describe_impact(stand_in.summary).c_str());
 }
 

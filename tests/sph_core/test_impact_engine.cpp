@@ -55,6 +55,25 @@ TEST(ImpactConfig, SetupImpactParsesTheImpactTable) {
   // Impacts get the velocity-change time-step limit by default, other problems do not.
   EXPECT_EQ(config.time_step.velocity_change, 0.1);
   EXPECT_EQ(SimulationConfig{}.time_step.velocity_change, 0.0);
+  // ... and the Morris-Monaghan switch with the Balsara limiter, and block time steps (8 levels).
+  EXPECT_EQ(config.viscosity.viscosity_switch, ViscositySwitch::morris_monaghan);
+  EXPECT_TRUE(config.viscosity.balsara);
+  EXPECT_EQ(config.time_step.block_levels, 8);
+  const auto sod = parse_simulation_config("[problem]\nsetup = \"sod\"\n[run]\nend_time = 0.1\n", "sod.toml");
+  EXPECT_EQ(sod.viscosity.viscosity_switch, ViscositySwitch::none);
+  EXPECT_FALSE(sod.viscosity.balsara);
+  EXPECT_EQ(sod.time_step.block_levels, 0);
+  // Each stays overridable; a summed density turns the block default off instead of failing.
+  const auto overridden = parse_simulation_config(
+      std::string(small_impact) +
+          "[viscosity]\nswitch = \"none\"\nbalsara = false\n[time_step]\nblock_levels = 0\n",
+      "small.toml");
+  EXPECT_EQ(overridden.viscosity.viscosity_switch, ViscositySwitch::none);
+  EXPECT_FALSE(overridden.viscosity.balsara);
+  EXPECT_EQ(overridden.time_step.block_levels, 0);
+  const auto summed = parse_simulation_config(
+      std::string(small_impact) + "[kernel]\ndensity = \"summation\"\n", "small.toml");
+  EXPECT_EQ(summed.time_step.block_levels, 0);
 }
 
 TEST(ImpactConfig, ShippedExamplesParse) {

@@ -414,7 +414,11 @@ ImpactSetup example_setup(const std::string& file) {
 TEST(ImpactSetup, PhysicsMdBouldersFromTheExample) {
   ImpactSetup s = example_setup("sci-boulders.toml");
   ASSERT_EQ(s.boulders.size(), 4u);
-  s.particle_spacing = 0.5;  // coarser than the example, to keep the test fast (56 k particles)
+  // A uniform lattice coarser than the example's graded target, to keep the test fast (56 k particles) and
+  // the nodes countable below; the stand-in takes the place of the unresolved projectile.
+  s.particle_spacing = 0.5;
+  s.inner_spacing = 0.0;
+  s.projectile_model = ProjectileModel::point_source_stand_in;
   const ImpactScenario sc = make_impact(s, eta, 1.0, ryugu_gravity);
   const Particles& p = sc.problem.particles;
   const double dx = 0.5;
@@ -569,11 +573,16 @@ TEST(ImpactSetup, ShippedExamplesParse) {
   for (const char* file :
        {"sci.toml", "sci-boulders.toml", "impact-0.05kg.toml", "impact-100kg.toml", "impact-2000kg.toml"}) {
     const ImpactSetup s = example_setup(file);
-    // Domain and spacing scaled together: R_dom / dx = 60 in every example.
-    EXPECT_NEAR(s.domain_radius / s.particle_spacing, 60.0, 0.1) << file;
+    // Domain and outer spacing scaled together: R_dom / dx_max = 30 in every example (sci.toml's 15 / 0.5).
+    EXPECT_NEAR(s.domain_radius / s.particle_spacing, 30.0, 0.05) << file;
+    // The projectile resolved at its own density on a graded target, dx0 <= a/2 (within 3 %).
     const ImpactSummary m = impact_projectile_summary(s, 2700.0);
-    EXPECT_EQ(m.model, ProjectileModel::point_source_stand_in) << file;
-    EXPECT_NEAR(m.model_radius, 2.0 * s.particle_spacing, 1e-12) << file;
+    EXPECT_EQ(m.model, ProjectileModel::resolved) << file;
+    EXPECT_EQ(m.model_density, 2700.0) << file;
+    EXPECT_GT(s.inner_spacing, 0.0) << file;
+    EXPECT_LE(s.inner_spacing, 0.5 * m.projectile_radius) << file;
+    EXPECT_GT(s.inner_spacing, 0.97 * 0.5 * m.projectile_radius) << file;
+    EXPECT_EQ(s.symmetry, s.boulders.empty() ? DomainSymmetry::quarter : DomainSymmetry::full) << file;
   }
 }
 

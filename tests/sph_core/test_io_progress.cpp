@@ -100,6 +100,37 @@ TEST(IoProgress, PrintsEveryIntervalWithRatesOverTheInterval) {
   std::fclose(log);
 }
 
+// Before the end of a first stage (the late-stage switch) the time left is to that stage's end, and the
+// line says so: the pace of the shock stage says nothing about the late stage.
+TEST(IoProgress, EstimatesToTheEndOfTheFirstStageBeforeIt) {
+  std::FILE* log = std::tmpfile();
+  ASSERT_NE(log, nullptr);
+  double wall = 0;
+  sph::ProgressOptions options;
+  options.end_time = 500.0;
+  options.stage_end_time = 0.1;
+  options.log_interval_seconds = 10;
+  sph::Progress progress(options, log, [&] { return wall; });
+  progress.update(0.0, 0, 1e-4, 0);
+  wall = 20;
+  progress.update(0.02, 200, 1e-4, 200000);
+  // 0.02 s in 20 s, 0.08 s to the switch -> 80 s.
+  EXPECT_EQ(
+      contents(log),
+      "t 2.0000e-02 / 5.0000e+02 s  step 200  dt 1.000e-04 s  1.000e+04 particle-updates/s  left 0:01:20"
+      " to t = 1.0000e-01 s\n");
+  std::fseek(log, 0, SEEK_END);
+  const long before = std::ftell(log);
+  wall = 100;
+  progress.update(100.0, 1000, 0.1, 1000000);
+  // After the switch: 99.98 s in 80 s, 400 s to the end -> 320 s, without the stage note.
+  const std::string last = contents(log).substr(static_cast<std::size_t>(before));
+  EXPECT_EQ(
+      last,
+      "t 1.0000e+02 / 5.0000e+02 s  step 1000  dt 1.000e-01 s  1.000e+04 particle-updates/s  left 0:05:20\n");
+  std::fclose(log);
+}
+
 TEST(IoProgress, SilencedPrintsNothing) {
   std::FILE* log = std::tmpfile();
   ASSERT_NE(log, nullptr);

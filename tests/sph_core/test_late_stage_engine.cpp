@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -92,6 +93,41 @@ TEST(LateStageEngine, SwitchLandsOnTransitionTimeAndTheTimeStepGrows) {
   EXPECT_EQ(a.numbers.at("late_stage_A_low"), A_low);
   EXPECT_EQ(a.numbers.at("late_stage_max_mach_at_transition"), mach_at_switch);
   EXPECT_EQ(a.numbers.at("late_stage_max_mach"), sim.late_stage_max_mach());
+}
+
+// What the switch carries (simulation.hpp): without gravity there is no lithostatic part, so every
+// particle's pressure is the shock-stage pressure scaled by sqrt(A_low/A) of its material (the elastic
+// energy P^2/(2K) of the wave kept), unless the matrix strain cap of 0.1 holds it. The shock-stage state
+// just before the switch comes from the same run without a transition, stepped to t_transition.
+TEST(LateStageEngine, PressureOfTheWavesIsScaledToKeepItsEnergy) {
+  const auto config = plates(0);
+  auto no_switch = config;
+  no_switch.late_stage.transition_time = 0.0;
+  no_switch.late_stage.A_low = 0.0;
+  Simulation switched(config, build_problem(config));
+  Simulation reference(no_switch, build_problem(no_switch));
+  while (!switched.late_stage_active()) {
+    switched.step(config.run.end_time);
+    reference.step(t_transition);
+    ASSERT_EQ(switched.time(), reference.time());
+  }
+  const auto& before = reference.particles();
+  const auto& after = switched.particles();
+  std::size_t scaled = 0, capped = 0;
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const auto A = solid_reference(reference.materials()[before.material[i]].eos)->bulk_modulus;
+    const double expected = before.pressure[i] * std::sqrt(A_low / A);
+    if (std::abs(expected) > late_stage_max_reference_strain * A_low) {
+      ++capped;
+      ASSERT_NEAR(std::abs(after.pressure[i]), late_stage_max_reference_strain * A_low, 1e-6 * A_low) << i;
+      continue;
+    }
+    ASSERT_NEAR(after.pressure[i], expected, 1e-9 * A_low) << i;
+    if (std::abs(expected) > 1e-3 * A_low) ++scaled;
+  }
+  std::printf("%zu particles: %zu with a wave pressure scaled, %zu at the strain cap\n", after.size(), scaled,
+              capped);
+  EXPECT_GT(scaled, after.size() / 10);  // the check is not vacuous
 }
 
 TEST(LateStageEngine, ResumedRunsEqualTheUninterruptedRunAcrossTheSwitch) {

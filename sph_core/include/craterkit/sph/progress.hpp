@@ -12,8 +12,12 @@
 namespace craterkit::sph {
 
 struct ProgressOptions {
-  bool enabled = true;               // false: print nothing
-  double end_time = 0;               // s, simulated end time (for the time left; 0: unknown)
+  bool enabled = true;  // false: print nothing
+  double end_time = 0;  // s, simulated end time (for the time left; 0: unknown)
+  // s, end of a first stage whose pace says nothing about the rest (the late-stage switch of an impact: its
+  // time step is hundreds of times longer after it). Before it the time left is estimated to it and the
+  // line says so; 0: no such stage.
+  double stage_end_time = 0;
   double redraw_seconds = 0.25;      // terminal: minimum wall time between redraws
   double log_interval_seconds = 10;  // not a terminal: wall time between lines
 };
@@ -26,9 +30,11 @@ struct ProgressSample {
   double dt = 0;                           // s
   double particle_updates_per_second = 0;  // particle updates / wall s over the last interval
   double seconds_left = -1;                // wall s; negative: unknown
+  double left_until = 0;                   // s: the simulated time seconds_left reaches, if not end_time
 };
 
-// "t 1.2340e-02 / 5.0000e-02 s  step 123  dt 1.23e-04 s  3.41e+05 particle-updates/s  left 0:01:23"
+// "t 1.2340e-02 / 5.0000e-02 s  step 123  dt 1.23e-04 s  3.41e+05 particle-updates/s  left 0:01:23", with
+// " to t = 1.0000e-01 s" appended when the estimate is to the end of a first stage (ProgressOptions).
 std::string format_progress(const ProgressSample& sample);
 
 class Progress {

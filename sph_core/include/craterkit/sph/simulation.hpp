@@ -18,16 +18,21 @@
 // that would pass t_transition is shortened to end on it; after that step every material switches to the
 // low-sound-speed law, the equation of state and the rates are evaluated again with the new laws (so the
 // integrator's stored rates belong to the switched medium), and the time step follows the new sound speeds.
-// The switch keeps each particle's pressure: its density is re-referenced so that the new law returns
-// the pressure it had, rho = rho_m0 (1 + alpha P / A_low) / alpha, with the matrix strain alpha P / A_low
-// capped at +-late_stage_max_reference_strain (beyond it the pressure drops to the cap's). Without this a
-// target at rest would suddenly carry its lithostatic load with a medium A/A_low times softer and sag
-// (docs/validation.md, "Lithostatic rest"); the density of continuity-SPH is a state variable, so
-// this moves no particle and changes no mass or energy. The deviatoric stress is kept likewise, with the
-// elastic shear strain sqrt(J2)/(2 G) under the new (A_low/A times smaller) shear modulus capped at the
-// same 0.1: a shock-stage stress of 1 MPa in a projectile whose late-stage G is a few kPa would otherwise
-// hold an elastic energy S^2/(4G) far above the impact energy and release it as motion (measured on a
-// 5 m/s impact: the kinetic energy grew 20-fold after the switch, Mach 12).
+// What each particle carries across the switch (carry_stress_across_switch()): its velocity, its lithostatic
+// pressure and the wave energy of the rest of its stress. The lithostatic part P_s = clamp(P, 0, rho g d)
+// (d the depth below the pre-impact surface z = 0, g the downward gravity) is kept: the density is
+// re-referenced so that the new law returns it, rho = rho_m0 (1 + alpha P / A_low) / alpha. Without this a
+// target at rest would suddenly carry its load with a medium A/A_low times softer and sag
+// (docs/validation.md, "Lithostatic rest"); the density of continuity-SPH is a state variable, so this moves
+// no particle and changes no mass or energy. The dynamic rest P - P_s and the deviatoric stress S are the
+// stresses of the shock stage's waves: their elastic energy per volume, P^2/(2K) and S:S/(4G), is kept, so
+// both are scaled by sqrt(A_low/A) (K and G both scale by A_low/A; a plane wave's stress is its impedance
+// times its particle velocity, and the impedance scales by the same factor). Keeping them unscaled would
+// multiply that energy by A/A_low (1e6 for the SCI target): measured on sci.toml, 480 J appeared at the
+// switch (the crater flow then carried about 2,000 J), heaved the whole target by metres over 100 s and
+// opened a "crater" of loosened material (docs/validation.md, "Impact craters"). The matrix strain
+// alpha P / A_low stays capped at +-late_stage_max_reference_strain, and the elastic shear strain
+// sqrt(J2)/(2 G) under the new G at the same 0.1 (cap_elastic_shear_strain()).
 // The switch is logged on stderr with the largest Mach number |v|/c just after it; the largest Mach
 // number over the late stage is tracked every step. Both go into the attributes of later snapshots and
 // checkpoints (record_late_stage(), plus "late_stage_max_mach"), and a run resumed from a checkpoint
@@ -149,9 +154,11 @@ class Simulation {
   // The next step (global) or block: the longest particle step, at most 2^block_levels times the
   // shortest and at most max_step (block_levels = 0: the shortest, the global step).
   [[nodiscard]] double next_block_length() const;
-  void switch_to_late_stage();  // the materials and the fluid laws (no logging, no rate evaluation)
-  void eject();                 // flags, records and moves ejecta behind the active particles
-  void keep_pressure_across_switch();
+  // The materials and the fluid laws (no logging, no rate evaluation); returns each material's stress
+  // factor sqrt(A_low/A).
+  std::vector<double> switch_to_late_stage();
+  void eject();  // flags, records and moves ejecta behind the active particles
+  void carry_stress_across_switch(const std::vector<double>& stress_factor);
   void cap_elastic_shear_strain();
 
   SimulationConfig config_;
