@@ -122,6 +122,8 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       c.setup = p;
     }
   }
+  // Impacts change some defaults below (docs/simulate.md, "Defaults for impacts").
+  const ImpactSetup* impact = std::get_if<ImpactSetup>(&c.setup);
   {
     TomlKeys s = section("run");
     c.run.end_time = s.number("end_time", 0.0, 0.0, inf, true);
@@ -145,9 +147,9 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     // and the crater measurement visit every particle for it (measured: 96 ms per search for 2144
     // particles). Relative to the particle's own h, so that it holds for the fine particles of a graded
     // target as for the coarse ones.
-    const bool impact_setup = std::holds_alternative<ImpactSetup>(c.setup);
     c.smoothing.max_smoothing_length = s.number("max_smoothing_length", inf, 0.0, inf, true);
-    c.smoothing.max_smoothing_ratio = s.number("max_smoothing_ratio", impact_setup ? 3.0 : inf, 1.0, inf);
+    c.smoothing.max_smoothing_ratio =
+        s.number("max_smoothing_ratio", impact != nullptr ? 3.0 : inf, 1.0, inf);
     c.smoothing.neighbour_band = s.number("neighbour_band", c.smoothing.neighbour_band, 0.0, 1.0, true);
     const std::string density = s.text("density", "continuity", {"continuity", "summation"});
     c.density = density == "summation" ? DensityMethod::summation : DensityMethod::continuity;
@@ -164,15 +166,15 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     // Impacts default to the Morris-Monaghan switch with the Balsara limiter: with a constant alpha = 1
     // the viscosity damps the excavation flow behind the shock within about a millisecond and the crater
     // stays small (measured on the scaled SCI runs, docs/validation.md "Impact craters").
-    const bool impact = std::holds_alternative<ImpactSetup>(c.setup);
-    const std::string sw = s.text("switch", impact ? "morris_monaghan" : "none", {"none", "morris_monaghan"});
+    const std::string sw =
+        s.text("switch", impact != nullptr ? "morris_monaghan" : "none", {"none", "morris_monaghan"});
     v.viscosity_switch = sw == "morris_monaghan" ? ViscositySwitch::morris_monaghan : ViscositySwitch::none;
     v.alpha_min = s.number("alpha_min", v.alpha_min, 0.0, 10.0);
     if (v.alpha_min > v.alpha)
       s.fail("alpha_min", "value " + format_number(v.alpha_min) + " exceeds viscosity.alpha");
     v.decay_factor = s.number("decay_factor", v.decay_factor, 0.0, 10.0, true);
     v.epsilon = s.number("epsilon", v.epsilon, 0.0, 1.0, true);
-    v.balsara = s.boolean("balsara", impact);
+    v.balsara = s.boolean("balsara", impact != nullptr);
     s.finish();
   }
   {
@@ -184,19 +186,15 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     t.energy_change = s.number("energy_change", t.energy_change, 0.0, 1.0);
     // Impacts default to the energy limit with u_floor = U^2/400 (1e4 J/kg at 2 km/s): without it the
     // light stand-in projectile's specific energy can change sign within one step (docs/impact_setup.md).
-    const auto* impact_setup_parameters = std::get_if<ImpactSetup>(&c.setup);
     const double impact_floor =
-        impact_setup_parameters != nullptr
-            ? impact_setup_parameters->impact_speed * impact_setup_parameters->impact_speed / 400.0
-            : t.energy_floor;
+        impact != nullptr ? impact->impact_speed * impact->impact_speed / 400.0 : t.energy_floor;
     t.energy_floor = s.number("energy_floor", impact_floor, 0.0, inf);
     t.max_step = s.number("max_step", t.max_step, 0.0, inf, true);
     // Impacts default to the velocity-change limit (time_step.hpp: the light stand-in projectile).
-    t.velocity_change = s.number("velocity_change", impact_setup_parameters != nullptr ? 0.1 : 0.0, 0.0, 1.0);
+    t.velocity_change = s.number("velocity_change", impact != nullptr ? 0.1 : 0.0, 0.0, 1.0);
     // Impacts default to block time steps (8 levels: the finest particles of a graded target step up to 256
     // times per step of the coarsest) when the density is integrated, which block steps need.
-    const int block_default =
-        impact_setup_parameters != nullptr && c.density == DensityMethod::continuity ? 8 : 0;
+    const int block_default = impact != nullptr && c.density == DensityMethod::continuity ? 8 : 0;
     t.block_levels = static_cast<int>(s.integer("block_levels", block_default, 0, 30));
     if (t.block_levels > 0 && c.density == DensityMethod::summation) {
       s.fail("block_levels",
@@ -230,13 +228,12 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     o.conservation_log = s.boolean("conservation_log", true);
     s.finish();
   }
-  const bool impact = std::holds_alternative<ImpactSetup>(c.setup);
-  if (impact && root.contains("late_stage")) {
+  if (impact != nullptr && root.contains("late_stage")) {
     throw InputError(source +
                      ": table [late_stage] given but problem.setup = \"impact\": use impact.t_transition "
                      "and impact.A_low");
   }
-  if (!impact && root.contains("crater")) {
+  if (impact == nullptr && root.contains("crater")) {
     throw InputError(source + ": table [crater] is only for problem.setup = \"impact\"");
   }
   {

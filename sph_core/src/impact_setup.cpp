@@ -106,6 +106,15 @@ void set_state(Particles& p, std::size_t i, const Material& material, double den
   p.sound_speed[i] = s.sound_speed;
 }
 
+// The material id at a point: boulder b (id 2 + b, the first that contains it) wherever a boulder is, else
+// the target (0) below the surface z = 0, else -1 (empty space above the surface).
+int material_at(const ImpactSetup& s, double x, double y, double z) {
+  for (std::size_t b = 0; b < s.boulders.size(); ++b) {
+    if (contains(s.boulders[b].shape, x, y, z)) return static_cast<int>(2 + b);
+  }
+  return z < 0.0 ? 0 : -1;
+}
+
 // The uniform lattice target (docs/impact_setup.md "Geometry").
 void build_lattice_target(const ImpactSetup& s, double alpha, double g, double shell, ProblemSetup& problem,
                           ImpactSummary& summary) {
@@ -128,14 +137,7 @@ void build_lattice_target(const ImpactSetup& s, double alpha, double g, double s
         const double z = -(static_cast<double>(k) + 0.5) * dx;
         const double r2 = x * x + y * y + z * z;
         if (r2 >= R2) continue;
-        int material = -1;
-        for (std::size_t b = 0; b < s.boulders.size(); ++b) {
-          if (contains(s.boulders[b].shape, x, y, z)) {
-            material = static_cast<int>(2 + b);
-            break;
-          }
-        }
-        if (material < 0 && z < 0.0) material = 0;
+        const int material = material_at(s, x, y, z);
         if (material < 0) continue;  // empty space above the surface: the pressure is unchanged
         const Material& m = problem.materials[static_cast<std::size_t>(material)];
         const double centre_pressure = lithostatic_pressure_after(m, pressure, 0.5 * dx, g);
@@ -219,14 +221,7 @@ void build_graded_target(const ImpactSetup& s, double eta, double alpha, double 
       for (const double sz : {1.0, -1.0}) {
         if (sz < 0.0 && s.boulders.empty()) continue;
         const double x = sx[m] * q.x, y = sy[m] * q.y, z = sz * q.z;
-        int material = -1;
-        for (std::size_t b = 0; b < s.boulders.size(); ++b) {
-          if (contains(s.boulders[b].shape, x, y, z)) {
-            material = static_cast<int>(2 + b);
-            break;
-          }
-        }
-        if (material < 0 && z < 0.0) material = 0;
+        const int material = material_at(s, x, y, z);
         if (material < 0) continue;
         const std::size_t id = add_particle(p, x, y, z);
         p.material[id] = static_cast<std::uint16_t>(material);
