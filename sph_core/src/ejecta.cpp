@@ -4,14 +4,21 @@
 
 namespace craterkit::sph {
 
-std::size_t eject_particles(Particles& p, double radius, double time, std::uint64_t step,
+std::size_t eject_particles(Particles& p, const EjectionRule& rule,
+                            std::span<const std::uint32_t> neighbour_count, double time, std::uint64_t step,
                             std::vector<EjectaRecord>& out) {
-  if (!(radius > 0.0)) return 0;
-  const double r2 = radius * radius;
+  if (!(rule.radius > 0.0)) return 0;
+  const double r2 = rule.radius * rule.radius;
+  const double v2 = rule.escape_speed * rule.escape_speed;
+  const bool escape_rule = rule.escape_speed > 0.0;
   std::size_t count = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
-    if (!(p.z[i] > 0.0) || !(p.x[i] * p.x[i] + p.y[i] * p.y[i] + p.z[i] * p.z[i] > r2)) continue;
+    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0 || !(p.z[i] > 0.0)) continue;
+    const bool left = p.x[i] * p.x[i] + p.y[i] * p.y[i] + p.z[i] * p.z[i] > r2;
+    const bool escaping = escape_rule && p.vz[i] > 0.0 && i < neighbour_count.size() &&
+                          neighbour_count[i] == 0 &&
+                          p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i] > v2;
+    if (!left && !escaping) continue;
     p.flags[i] |= particle_ejected;
     out.push_back(
         {p.id[i], p.material[i], p.mass[i], time, step, p.x[i], p.y[i], p.z[i], p.vx[i], p.vy[i], p.vz[i]});

@@ -142,6 +142,7 @@ ImpactSetup parse_impact_setup(const toml::table& impact, const std::string& sou
   s.symmetry = symmetry == "quarter" ? DomainSymmetry::quarter : DomainSymmetry::full;
   s.transition_time = t.number("t_transition", s.transition_time, 0.0, inf);
   s.low_sound_speed_modulus = t.number("A_low", s.low_sound_speed_modulus, 0.0, inf, true);
+  s.escape_speed = t.number("escape_speed", s.escape_speed, 0.0, inf);
   if (const toml::node* boulders = t.find("boulders")) {
     const toml::array* array = boulders->as_array();
     if (array == nullptr) t.fail("boulders", "expected an array of tables ([[impact.boulders]])");

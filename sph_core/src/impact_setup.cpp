@@ -449,6 +449,10 @@ ImpactScenario make_impact(const ImpactSetup& s, double eta, double alpha,
   require_positive(s.particle_spacing, "particle_spacing");
   validate_grading(s);
   require_positive(s.low_sound_speed_modulus, "A_low");
+  if (!(s.escape_speed >= 0.0) || !std::isfinite(s.escape_speed)) {
+    fail("escape_speed",
+         "value " + number_text(s.escape_speed) + " out of range: must be >= 0 (0: not used)");
+  }
   if (!(s.transition_time >= 0.0) || !std::isfinite(s.transition_time)) {
     fail("t_transition",
          "value " + number_text(s.transition_time) + " out of range: must be >= 0 (0: 10 R_dom / c)");
@@ -520,6 +524,7 @@ ImpactScenario make_impact(const ImpactSetup& s, double eta, double alpha,
   summary.transition_time =
       summary.transition_time_from_rule ? 10.0 * R / summary.initial_sound_speed : s.transition_time;
   summary.low_sound_speed_modulus = s.low_sound_speed_modulus;
+  summary.escape_speed = s.escape_speed;
   summary.boulder_particles.assign(s.boulders.size(), 0);
   summary.inner_spacing = projectile_spacing(s);
   summary.min_smoothing_length = summary.max_smoothing_length = h;
@@ -604,6 +609,7 @@ RunAttributes impact_run_attributes(const ImpactSummary& s, KernelType kernel) {
   out.numbers["inner_radius"] = s.inner_radius;
   out.numbers["t_transition"] = s.transition_time;
   out.numbers["A_low"] = s.low_sound_speed_modulus;
+  out.numbers["escape_speed"] = s.escape_speed;
   out.numbers["projectile_radius"] = s.projectile_radius;
   out.numbers["projectile_mass"] = s.projectile_mass;
   out.numbers["projectile_density"] = s.projectile_density;
@@ -684,6 +690,9 @@ std::string describe_impact(const ImpactSummary& s) {
   o << "impact: t_transition = " << s.transition_time << " s"
     << (s.transition_time_from_rule ? " (10 R_dom / c)" : " (given)")
     << ", A_low = " << s.low_sound_speed_modulus << " Pa\n";
+  o << "impact: ejecta leave the hydrodynamics beyond R_dom = " << s.domain_radius << " m";
+  if (s.escape_speed > 0.0) o << " or when faster than " << s.escape_speed << " m/s and clear of the target";
+  o << "\n";
   return o.str();
 }
 

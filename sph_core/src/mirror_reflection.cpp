@@ -12,10 +12,13 @@ std::size_t reflect_across_mirror_planes(Particles& p, const Box& box) {
   const std::array<std::vector<double>*, 3> velocity{&p.vx, &p.vy, &p.vz};
   const std::array<std::vector<double>*, 3> acceleration{&p.acceleration_x, &p.acceleration_y,
                                                          &p.acceleration_z};
-  // The deviatoric stress components (and rates) with exactly one index along each axis: xy, xz for x;
-  // xy, yz for y; xz, yz for z (S_zz = -(S_xx + S_yy) and the diagonal are even).
+  // The deviatoric stress components (and rates, and the correction matrix) with exactly one index along each
+  // axis: xy, xz for x; xy, yz for y; xz, yz for z (S_zz = -(S_xx + S_yy) and the diagonal are even).
   const std::array<std::array<std::vector<double>*, 2>, 3> stress{
       {{&p.stress_xy, &p.stress_xz}, {&p.stress_xy, &p.stress_yz}, {&p.stress_xz, &p.stress_yz}}};
+  const std::array<std::array<std::vector<double>*, 2>, 3> correction{{{&p.correction_xy, &p.correction_xz},
+                                                                       {&p.correction_xy, &p.correction_yz},
+                                                                       {&p.correction_xz, &p.correction_yz}}};
   const std::array<std::array<std::vector<double>*, 2>, 3> stress_rate{
       {{&p.stress_rate_xy, &p.stress_rate_xz},
        {&p.stress_rate_xy, &p.stress_rate_yz},
@@ -32,6 +35,7 @@ std::size_t reflect_across_mirror_planes(Particles& p, const Box& box) {
       if (p.solid_fields) {
         for (auto* s : stress[a]) (*s)[i] = -(*s)[i];
         for (auto* s : stress_rate[a]) (*s)[i] = -(*s)[i];
+        for (auto* s : correction[a]) (*s)[i] = -(*s)[i];
       }
       ++reflected;
     }

@@ -4,6 +4,15 @@
 
 namespace craterkit::sph {
 
+namespace {
+
+void set_identity_correction(Particles& p, std::size_t from) {
+  for (std::size_t i = from; i < p.size(); ++i)
+    p.correction_xx[i] = p.correction_yy[i] = p.correction_zz[i] = 1.0;
+}
+
+}  // namespace
+
 void Particles::resize(std::size_t n) {
   const std::size_t old = size();
   for_each_field([n](std::string_view, auto& field) { field.resize(n); });
@@ -12,6 +21,13 @@ void Particles::resize(std::size_t n) {
     balsara[i] = 1.0;
     flags[i] = particle_active;
   }
+  if (solid_fields) set_identity_correction(*this, old);
+}
+
+std::optional<double> Particles::default_for_absent_field(std::string_view name) {
+  if (name == "correction_xx" || name == "correction_yy" || name == "correction_zz") return 1.0;
+  if (name == "correction_xy" || name == "correction_xz" || name == "correction_yz") return 0.0;
+  return std::nullopt;
 }
 
 void Particles::set_solid_fields(bool present) {
@@ -22,6 +38,7 @@ void Particles::set_solid_fields(bool present) {
     field.assign(n, 0.0);
     field.shrink_to_fit();
   });
+  if (present) set_identity_correction(*this, 0);
 }
 
 void Particles::reserve(std::size_t n) {

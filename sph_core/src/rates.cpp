@@ -23,31 +23,6 @@ inline double wrap(double d, double period, double half) noexcept {
   return d;
 }
 
-// Inverts a 3x3 matrix (row-major); returns false when it is ill-conditioned, i.e. |det| small
-// compared with the product of the row norms (the Randles-Libersky matrix of a near-isolated
-// particle), in which case the caller keeps the uncorrected gradient.
-inline bool invert3(const double m[9], double inv[9]) noexcept {
-  const double c00 = m[4] * m[8] - m[5] * m[7];
-  const double c01 = m[5] * m[6] - m[3] * m[8];
-  const double c02 = m[3] * m[7] - m[4] * m[6];
-  const double det = m[0] * c00 + m[1] * c01 + m[2] * c02;
-  const double n0 = std::sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-  const double n1 = std::sqrt(m[3] * m[3] + m[4] * m[4] + m[5] * m[5]);
-  const double n2 = std::sqrt(m[6] * m[6] + m[7] * m[7] + m[8] * m[8]);
-  if (!(std::abs(det) > 1e-3 * n0 * n1 * n2)) return false;
-  const double r = 1.0 / det;
-  inv[0] = c00 * r;
-  inv[1] = (m[2] * m[7] - m[1] * m[8]) * r;
-  inv[2] = (m[1] * m[5] - m[2] * m[4]) * r;
-  inv[3] = c01 * r;
-  inv[4] = (m[0] * m[8] - m[2] * m[6]) * r;
-  inv[5] = (m[2] * m[3] - m[0] * m[5]) * r;
-  inv[6] = c02 * r;
-  inv[7] = (m[1] * m[6] - m[0] * m[7]) * r;
-  inv[8] = (m[0] * m[4] - m[1] * m[3]) * r;
-  return true;
-}
-
 template <class Kernel, bool solid, bool mirrored>
 RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
                        RateWorkspace& workspace, VelocityGradients* gradients,
@@ -83,6 +58,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   const double* sxz = p.stress_xz.data();
   const double* syy = p.stress_yy.data();
   const double* syz = p.stress_yz.data();
+  const double* lxx = p.correction_xx.data();
+  const double* lxy = p.correction_xy.data();
+  const double* lxz = p.correction_xz.data();
+  const double* lyy = p.correction_yy.data();
+  const double* lyz = p.correction_yz.data();
+  const double* lzz = p.correction_zz.data();
   const std::uint8_t* flags = p.flags.data();
   const std::uint64_t* offsets = pairs.offsets.data();
   const std::uint32_t* neighbours = pairs.neighbours.data();
@@ -135,25 +116,29 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     double curl_x = 0.0, curl_y = 0.0, curl_z = 0.0;  // sum_j V_j (v_j - v_i) x grad_i W_ij (Balsara, fluids)
     std::uint64_t count = 0;
 
-    // Solid-only state and accumulators (dead code, removed by the compiler, for fluids; the stress
-    // arrays are not even allocated then, so they are read only under `solid`).
-    double sixx = 0.0, sixy = 0.0, sixz = 0.0, siyy = 0.0, siyz = 0.0, sizz = 0.0;  // S_i / rho_i^2
+    // Solid-only state and accumulators (dead code, removed by the compiler, for fluids; the stress and
+    // correction arrays are not even allocated then, so they are read only under `solid`).
+    // B_i = sigma_i L_i / rho_i^2 (sigma = S - P I, L the correction matrix of gradient_correction.hpp): the
+    // i half of the corrected stress force and of the work term.
+    double bxx = 0.0, bxy = 0.0, bxz = 0.0, byx = 0.0, byy = 0.0, byz = 0.0, bzx = 0.0, bzy = 0.0, bzz = 0.0;
     if constexpr (solid) {
       const double inv_rho2i = inv_rhoi * inv_rhoi;
-      sixx = sxx[i] * inv_rho2i;
-      sixy = sxy[i] * inv_rho2i;
-      sixz = sxz[i] * inv_rho2i;
-      siyy = syy[i] * inv_rho2i;
-      siyz = syz[i] * inv_rho2i;
-      sizz = -(sxx[i] + syy[i]) * inv_rho2i;
+      const double Pi = pressure[i];
+      const double s_xx = sxx[i] - Pi, s_xy = sxy[i], s_xz = sxz[i], s_yy = syy[i] - Pi, s_yz = syz[i];
+      const double s_zz = -(sxx[i] + syy[i]) - Pi;
+      const double l_xx = lxx[i], l_xy = lxy[i], l_xz = lxz[i], l_yy = lyy[i], l_yz = lyz[i], l_zz = lzz[i];
+      bxx = (s_xx * l_xx + s_xy * l_xy + s_xz * l_xz) * inv_rho2i;
+      bxy = (s_xx * l_xy + s_xy * l_yy + s_xz * l_yz) * inv_rho2i;
+      bxz = (s_xx * l_xz + s_xy * l_yz + s_xz * l_zz) * inv_rho2i;
+      byx = (s_xy * l_xx + s_yy * l_xy + s_yz * l_xz) * inv_rho2i;
+      byy = (s_xy * l_xy + s_yy * l_yy + s_yz * l_yz) * inv_rho2i;
+      byz = (s_xy * l_xz + s_yy * l_yz + s_yz * l_zz) * inv_rho2i;
+      bzx = (s_xz * l_xx + s_yz * l_xy + s_zz * l_xz) * inv_rho2i;
+      bzy = (s_xz * l_xy + s_yz * l_yy + s_zz * l_yz) * inv_rho2i;
+      bzz = (s_xz * l_xz + s_yz * l_yz + s_zz * l_zz) * inv_rho2i;
     }
-    // Why so few accumulators: with 9 + 9 + 9 (G, M and the uncorrected m_j-weighted gradient) the pair
-    // loop ran out of registers and spilled (perf: solid pair pass 2.4x the fluid one). M is symmetric
-    // (grad W is parallel to x_ij), and the work term needs only the scalar S_i : U, accumulated directly.
     double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (v_j - v_i) (x) grad W
-    double M[6] = {0, 0, 0, 0, 0, 0};           // sum V_j (x_j - x_i) (x) grad W: xx, xy, xz, yy, yz, zz
-    double work =
-        0.0;  // S_i/rho_i^2 : sum m_j (v_j - v_i) (x) grad W  (= (1/rho_i) S_i : uncorrected grad v)
+    double work = 0.0;  // -sum_j m_j v_ij . (B_i grad W): pressure and deviatoric work, matched to the force
 
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
       // The neighbour, or its mirror image: position, velocity and deviatoric stress of j mapped to the
@@ -191,12 +176,13 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       }
 
       const double inv_rho2j = inv_rho[j] * inv_rho[j];
-      const double f = (pr2i + pressure[j] * inv_rho2j) + pi_ij;  // symmetric in i, j
+      double f = pi_ij;  // the pressure of solids is in their stress force below
+      if constexpr (!solid) f += pr2i + pressure[j] * inv_rho2j;  // symmetric in i, j
       ax -= mj * f * gx;
       ay -= mj * f * gy;
       az -= mj * f * gz;
       vv_grad += volume[j] * v_dot_g;
-      mv_grad += mj * v_dot_g;
+      if constexpr (!solid) mv_grad += mj * v_dot_g;
       viscous += mj * pi_ij * v_dot_g;
       if constexpr (!solid) {
         if (use_balsara) {  // (v_j - v_i) x grad W = grad W x dv (solids take it from G below)
@@ -207,18 +193,28 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       }
 
       if constexpr (solid) {
-        // + m_j (S_i/rho_i^2 + S_j/rho_j^2) . grad_i W_ij; S_i/rho_i^2 . grad W serves the work term too.
-        const double sigx = sixx * gx + sixy * gy + sixz * gz;
-        const double sigy = sixy * gx + siyy * gy + siyz * gz;
-        const double sigz = sixz * gx + siyz * gy + sizz * gz;
-        const double jxx = sxx[j] * inv_rho2j, jxy = image.shear(0, 1, sxy[j]) * inv_rho2j,
-                     jxz = image.shear(0, 2, sxz[j]) * inv_rho2j;
-        const double jyy = syy[j] * inv_rho2j, jyz = image.shear(1, 2, syz[j]) * inv_rho2j;
-        const double jzz = -(jxx + jyy);
-        ax += mj * (sigx + jxx * gx + jxy * gy + jxz * gz);
-        ay += mj * (sigy + jxy * gx + jyy * gy + jyz * gz);
-        az += mj * (sigz + jxz * gx + jyz * gy + jzz * gz);
-        // (v_j - v_i) = -dv, (x_j - x_i) = -d, grad W = g.
+        // + m_j (B_i + B_j) grad_i W_ij, B = sigma L / rho^2: B_i grad W from the registers, B_j grad W as
+        // sigma_j (L_j grad W) / rho_j^2 (the image's L and S: off-diagonals reflected like S).
+        const double tix = bxx * gx + bxy * gy + bxz * gz;
+        const double tiy = byx * gx + byy * gy + byz * gz;
+        const double tiz = bzx * gx + bzy * gy + bzz * gz;
+        const double jl_xy = image.shear(0, 1, lxy[j]), jl_xz = image.shear(0, 2, lxz[j]),
+                     jl_yz = image.shear(1, 2, lyz[j]);
+        const double lgx = lxx[j] * gx + jl_xy * gy + jl_xz * gz;
+        const double lgy = jl_xy * gx + lyy[j] * gy + jl_yz * gz;
+        const double lgz = jl_xz * gx + jl_yz * gy + lzz[j] * gz;
+        const double Pj = pressure[j];
+        const double jxx = sxx[j] - Pj, jxy = image.shear(0, 1, sxy[j]), jxz = image.shear(0, 2, sxz[j]);
+        const double jyy = syy[j] - Pj, jyz = image.shear(1, 2, syz[j]);
+        const double jzz = -(sxx[j] + syy[j]) - Pj;
+        const double tjx = (jxx * lgx + jxy * lgy + jxz * lgz) * inv_rho2j;
+        const double tjy = (jxy * lgx + jyy * lgy + jyz * lgz) * inv_rho2j;
+        const double tjz = (jxz * lgx + jyz * lgy + jzz * lgz) * inv_rho2j;
+        ax += mj * (tix + tjx);
+        ay += mj * (tiy + tjy);
+        az += mj * (tiz + tjz);
+        work -= mj * (dvx * tix + dvy * tiy + dvz * tiz);
+        // (v_j - v_i) = -dv, grad W = g.
         const double vgx = volume[j] * gx, vgy = volume[j] * gy, vgz = volume[j] * gz;
         G[0] -= dvx * vgx;
         G[1] -= dvx * vgy;
@@ -229,14 +225,6 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         G[6] -= dvz * vgx;
         G[7] -= dvz * vgy;
         G[8] -= dvz * vgz;
-        M[0] -= dx * vgx;
-        M[1] -= dx * vgy;
-        M[2] -= dx * vgz;
-        M[3] -= dy * vgy;
-        M[4] -= dy * vgz;
-        M[5] -= dz * vgz;
-        // m_j (v_j - v_i) . (S_i/rho_i^2 grad W)
-        work -= mj * (dvx * sigx + dvy * sigy + dvz * sigz);
       }
     }
 
@@ -244,30 +232,21 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     ay_out[i] = ay + gy_body;
     az_out[i] = az + gz_body;
     drho_out[i] = rhoi * vv_grad;
-    double du = pr2i * mv_grad + 0.5 * viscous;
-
     if constexpr (solid) {
-      // Work of the deviatoric stress with the uncorrected gradient G (energy-consistent with the
-      // momentum equation), and the Randles & Libersky (1996) corrected gradient G . M^-1 for the
-      // stress rate.
-      du += work;
+      du_out[i] = work + 0.5 * viscous;
       if (gradients != nullptr) {
-        double L[9];
-        double corrected[9];
-        const double full_M[9] = {M[0], M[1], M[2], M[1], M[3], M[4], M[2], M[4], M[5]};
-        if (invert3(full_M, L)) {
-          for (int a = 0; a < 3; ++a) {
-            for (int b = 0; b < 3; ++b) {
-              corrected[3 * a + b] = G[3 * a] * L[b] + G[3 * a + 1] * L[3 + b] + G[3 * a + 2] * L[6 + b];
-            }
+        // Corrected velocity gradient G . L_i (Randles & Libersky 1996) for the stress rate.
+        const double Lm[9] = {lxx[i], lxy[i], lxz[i], lxy[i], lyy[i], lyz[i], lxz[i], lyz[i], lzz[i]};
+        for (int a = 0; a < 3; ++a) {
+          for (int b = 0; b < 3; ++b) {
+            gradients->corrected[3 * a + b][i] =
+                G[3 * a] * Lm[b] + G[3 * a + 1] * Lm[3 + b] + G[3 * a + 2] * Lm[6 + b];
           }
-        } else {
-          for (int k = 0; k < 9; ++k) corrected[k] = G[k];
         }
-        for (int k = 0; k < 9; ++k) gradients->corrected[k][i] = corrected[k];
       }
+    } else {
+      du_out[i] = pr2i * mv_grad + 0.5 * viscous;
     }
-    du_out[i] = du;
 
     if (use_balsara) {
       // Balsara (1995) factor |div v| / (|div v| + |curl v| + 1e-4 c/h) for the next evaluation, from the

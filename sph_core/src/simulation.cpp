@@ -16,6 +16,7 @@
 #include "craterkit/sph/checkpoint.hpp"
 #include "craterkit/sph/crater_growth.hpp"
 #include "craterkit/sph/deviatoric_stress.hpp"
+#include "craterkit/sph/gradient_correction.hpp"
 #include "craterkit/sph/mirror_reflection.hpp"
 #include "craterkit/sph/progress.hpp"
 #include "craterkit/sph/rates_pressure.hpp"
@@ -79,7 +80,7 @@ Scenario build_scenario(const SimulationConfig& config) {
     // The density-scaled stand-in (material 1) keeps the sound speed of the material it stands for only
     // if its A_low is scaled by the same k as its other stress-like parameters (docs/impact_setup.md).
     plan.A_low[1] *= summary.model_density_scale;
-    out.problem.ejection_radius = summary.domain_radius;
+    out.problem.ejection = {summary.domain_radius, summary.escape_speed};
     out.problem.attributes = impact_run_attributes(summary, config.kernel);
     out.problem.attributes.numbers["A_low_projectile"] = plan.A_low[1];
     out.impact = summary;
@@ -195,7 +196,8 @@ void Simulation::cap_elastic_shear_strain() {
 
 void Simulation::eject() {
   auto& p = problem_.particles;
-  if (eject_particles(p, problem_.ejection_radius, time_, step_, new_ejecta_) == 0) return;
+  if (eject_particles(p, problem_.ejection, rate_workspace_.neighbour_count, time_, step_, new_ejecta_) == 0)
+    return;
   order_ = ejected_last_order(p, &active_);
   p.permute(order_);
   force_rebuild_ = true;
@@ -296,6 +298,11 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
                               rate_options_.period, rate_options_.mirror);
   }
   update_equation_of_state(state_for);
+  if (rate_options_.solid) {
+    auto scope = timers_.measure("correction");
+    compute_correction_matrices(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
+                                rate_workspace_, rates_for);
+  }
   {
     auto scope = timers_.measure("rates");
     rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
@@ -609,7 +616,7 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   }
 
   std::unique_ptr<StepCsvLog> ejecta_log;
-  if (files && sim->problem().ejection_radius > 0.0) {
+  if (files && sim->problem().ejection.radius > 0.0) {
     ejecta_log =
         std::make_unique<StepCsvLog>(out / "ejecta.csv", ejecta_csv_header(), ejecta_csv_step_column,
                                      summary.resumed ? static_cast<std::int64_t>(sim->step_count()) : -1);

@@ -67,6 +67,12 @@ std::string field_unit(std::string_view field_name) {
       {"stress_rate_yz", "Pa/s"},
       {"total_strain_rate", "1/s"},
       {"distention_rate", "1/s"},
+      {"correction_xx", "1"},
+      {"correction_xy", "1"},
+      {"correction_xz", "1"},
+      {"correction_yy", "1"},
+      {"correction_yz", "1"},
+      {"correction_zz", "1"},
   };
   for (const auto& [name, unit] : units) {
     if (name == field_name) return std::string(unit);

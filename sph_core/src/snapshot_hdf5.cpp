@@ -426,8 +426,15 @@ Particles read_particle_file(const std::filesystem::path& path, RunAttributes* a
 
   Particles particles;
   particles.solid_fields = H5Lexists(file.get(), solid_marker_field, H5P_DEFAULT) > 0;
-  particles.for_each_field(
-      [&](std::string_view name, auto& field) { read_field(path, file.get(), name, field, count); });
+  particles.for_each_field([&](std::string_view name, auto& field) {
+    // Fields added after a file was written (Particles::default_for_absent_field) take their default.
+    const auto fallback = Particles::default_for_absent_field(name);
+    if (fallback && H5Lexists(file.get(), std::string(name).c_str(), H5P_DEFAULT) <= 0) {
+      field.assign(count, static_cast<typename std::decay_t<decltype(field)>::value_type>(*fallback));
+      return;
+    }
+    read_field(path, file.get(), name, field, count);
+  });
 
   if (attributes != nullptr) {
     attributes->time = scan.numbers["time"];

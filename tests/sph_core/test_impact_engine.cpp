@@ -122,7 +122,7 @@ TEST(ImpactScenario, EngineGetsLateStagePlanEjectionRadiusAndAttributes) {
   const auto c_stand_in = evaluate(std::get<LowSoundSpeed>(stand_in.eos), 1.0, 0.0).sound_speed;
   const auto c_original = evaluate(std::get<LowSoundSpeed>(original.eos), 1.0, 0.0).sound_speed;
   EXPECT_NEAR(c_stand_in / c_original, 1.0, 1e-12);
-  EXPECT_EQ(scenario.problem.ejection_radius, 5.0);
+  EXPECT_EQ(scenario.problem.ejection.radius, 5.0);
   const auto& a = scenario.problem.attributes;
   EXPECT_EQ(a.numbers.at("initial_bulk_density"), summary.initial_bulk_density);
   EXPECT_EQ(a.numbers.at("particle_spacing"), 0.5);
@@ -169,7 +169,9 @@ TEST(Ejecta, FlagsOnlyMovingParticlesAboveThePlaneBeyondTheRadius) {
   }
   p.flags[4] = particle_fixed;
   std::vector<EjectaRecord> records;
-  EXPECT_EQ(eject_particles(p, 5.0, 2.5, 7, records), 2u);  // particles 0 and 3
+  const std::vector<std::uint32_t> neighbours(5, 0);  // all isolated, but no escape speed given
+  EXPECT_EQ(eject_particles(p, EjectionRule{5.0, 0.0}, neighbours, 2.5, 7, records),
+            2u);  // particles 0 and 3
   ASSERT_EQ(records.size(), 2u);
   EXPECT_EQ(records[0].id, 10u);
   EXPECT_EQ(records[1].id, 13u);
@@ -181,6 +183,34 @@ TEST(Ejecta, FlagsOnlyMovingParticlesAboveThePlaneBeyondTheRadius) {
   EXPECT_EQ(active, 3u);
   EXPECT_EQ(order, (std::vector<std::uint32_t>{1, 2, 4, 0, 3}));
   EXPECT_EQ(ejecta_csv_row(records[1]), "13,0,4,2.5,7,0,0,7,0,0,3");
+}
+
+// Escape rule (physics.md section 4): inside R_ej, a particle above the plane is ejected when it is faster
+// than the escape speed, rising, and had no neighbour; not when it is slower, falling back towards the
+// surface, has neighbours, is below the plane or is fixed.
+TEST(Ejecta, EscapeRuleTakesOnlyFastIsolatedParticlesAboveThePlane) {
+  Particles p;
+  p.resize(6);
+  const double state[6][4] = {{1, 0.5, 0, 0.5},  {1, 0.2, 0, 0.2},   {1, 0.5, 3, 0.5},
+                              {-1, 0.5, 0, 0.5}, {1, -0.5, 0, -0.5}, {1, 0.5, 0, 0.5}};  // z, vx, nb, vz
+  std::vector<std::uint32_t> neighbours(6);
+  for (std::size_t i = 0; i < 6; ++i) {
+    p.id[i] = i;
+    p.x[i] = 1.0;
+    p.z[i] = state[i][0];
+    p.vx[i] = state[i][1];
+    p.vz[i] = state[i][3];
+    neighbours[i] = static_cast<std::uint32_t>(state[i][2]);
+  }
+  p.flags[5] = particle_fixed;
+  std::vector<EjectaRecord> records;
+  // |v| = 0.71 (particles 0, 2, 3, 4, 5) or 0.28 (1) against 0.37 m/s.
+  EXPECT_EQ(eject_particles(p, EjectionRule{5.0, 0.37}, neighbours, 1.0, 3, records), 1u);
+  ASSERT_EQ(records.size(), 1u);
+  EXPECT_EQ(records[0].id, 0u);  // fast, rising, isolated, above the plane (4 falls towards the surface)
+  records.clear();
+  EXPECT_EQ(eject_particles(p, EjectionRule{5.0, 0.37}, std::vector<std::uint32_t>{}, 1.0, 3, records), 0u)
+      << "without neighbour counts no particle counts as clear of the target";
 }
 
 TEST(StepCsvLog, ResumeKeepsRowsUpToTheRestartStepAndDropsAPartialLine) {
@@ -261,7 +291,7 @@ TEST(Ejecta, EngineTakesEjectaOutOfTheHydrodynamics) {
   p.y[0] = 0.6;
   p.z[0] = 0.05;
   p.vx[0] = 5.0;
-  problem.ejection_radius = 0.7;
+  problem.ejection.radius = 0.7;
   SimulationConfig config;
   config.run.end_time = 1.0;
   Simulation sim(config, std::move(problem));

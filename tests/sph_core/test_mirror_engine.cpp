@@ -187,9 +187,9 @@ class FullAndQuarter {
 // difference of ~1e-7 of the field's scale that then persists (it does not grow: 1e-7 to 1e-6 from step 19
 // to step 800). The full run is no more symmetric than that itself: its own mirror partners differ by as
 // much. So the check after 0.02 s (724 steps: the contact, compaction and the late-stage switch at 0.01 s)
-// is that every field of the quarter is within 1e-5 of its scale of the full run (measured: 1.1e-6 at
-// worst, vx) and no farther from it than twice the full run's own mirror asymmetry (measured: at most
-// 1.2 times, S_xy).
+// is that every field of the quarter is within 1e-5 of its scale of the full run (measured: 7.1e-7 at
+// worst, u) and no farther from it than twice the full run's own mirror asymmetry (measured: at most
+// 1.85 times, the correction matrix L_yy; 1.2 times, S_xy, before the stress divergence was corrected).
 TEST(MirrorEngine, QuarterDomainEqualsTheFullDomainParticleByParticle) {
   FullAndQuarter runs;
   const double end_time = 0.02;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "craterkit/sph/gradient_correction.hpp"
 #include "craterkit/sph/mirror_image.hpp"
 #include "craterkit/sph/neighbour_search.hpp"
 #include "craterkit/sph/rates.hpp"
@@ -133,11 +134,16 @@ double compare(const std::string& name, const std::vector<double>& quarter, cons
 struct Rates {
   std::vector<double> ax, ay, az, drho, du, dalpha, density;
   std::array<std::vector<double>, 9> gradient;
+  std::array<std::vector<double>, 6> correction;
   std::vector<std::uint32_t> neighbours;
 };
 
 Rates evaluate(Cloud& c, const RateOptions& options) {
   VelocityGradients g;
+  if (options.solid) {
+    compute_correction_matrices(c.p, PairList{c.lists.offsets, c.lists.neighbours}, options, c.workspace,
+                                ParticleSelection::all(c.p.size()));
+  }
   compute_rates(c.p, PairList{c.lists.offsets, c.lists.neighbours}, options, c.workspace,
                 options.solid ? &g : nullptr);
   Rates r{c.p.acceleration_x,
@@ -148,8 +154,13 @@ Rates evaluate(Cloud& c, const RateOptions& options) {
           c.p.viscosity_alpha_rate,
           {},
           {},
+          {},
           c.workspace.neighbour_count};
-  if (options.solid) r.gradient = g.corrected;
+  if (options.solid) {
+    r.gradient = g.corrected;
+    r.correction = {c.p.correction_xx, c.p.correction_xy, c.p.correction_xz,
+                    c.p.correction_yy, c.p.correction_yz, c.p.correction_zz};
+  }
   Particles summed = c.p;
   compute_summation_density(summed, PairList{c.lists.offsets, c.lists.neighbours}, options.kernel,
                             options.period, options.mirror);
@@ -192,6 +203,10 @@ void expect_quarter_equals_full(bool solid, KernelType kernel, double skin) {
     for (int k = 0; k < 9; ++k) {
       worst = std::max(
           worst, compare("corrected gradient " + std::to_string(k), q.gradient[k], first(f.gradient[k])));
+    }
+    for (int k = 0; k < 6; ++k) {
+      worst = std::max(
+          worst, compare("correction matrix " + std::to_string(k), q.correction[k], first(f.correction[k])));
     }
   }
   // The same interacting neighbours (the count drives the smoothing length).

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Command-line contract of `craterkit simulate` that does not need a run: --dry-run reports the set-up of
-# the shipped SCI example (particle counts that tests/sph_core/test_graded_target.cpp also checks through the
-# library) and writes nothing; a bad key exits with status 2 and names the key, also with --dry-run.
+# Command-line contract of `craterkit simulate`: --dry-run reports the set-up of the shipped SCI example
+# (particle counts that tests/sph_core/test_graded_target.cpp also checks through the library) and writes
+# nothing; a bad key exits with status 2 and names the key, also with --dry-run; a run killed at a
+# checkpoint resumes to the crater of an uninterrupted run.
 # Usage: test_simulate_cli.sh /path/to/craterkit /path/to/data
 set -u
 CK="$1"
@@ -35,6 +36,56 @@ sed 's/^grading = 0.1 /grading = 7.0 /' "$DATA/examples/sci.toml" >"$WORK/bad.to
 status=$?
 [ "$status" -eq 2 ] || fail "a bad impact.grading exited $status, expected 2"
 grep -q "impact.grading" "$WORK/err" || fail "the error does not name impact.grading: $(cat "$WORK/err")"
+
+# Kill and resume (issue 6): the tiny impact of tests/sph_core/test_impact_run.cpp (2,144 particles, 1 s),
+# once uninterrupted and once killed with SIGKILL as soon as its first checkpoint exists, then resumed with
+# --resume: the resumed run ends with the same crater (crater.json), the same growth history and ejecta
+# as the uninterrupted one, bit for bit.
+cat >"$WORK/tiny.toml" <<'TOMLEOF'
+[problem]
+name = "tiny-impact"
+setup = "impact"
+[impact]
+projectile_model = "resolved"
+projectile_density = 1300.0
+projectile_mass = 5450.0
+impact_speed = 50.0
+A_low = 0.27e6
+domain_radius = 5.0
+particle_spacing = 0.5
+t_transition = 0.01
+escape_speed = 1.0
+[run]
+end_time = 1.0
+gravity = [0.0, 0.0, -1.0]
+[kernel]
+max_smoothing_length = 1.8
+[crater]
+check_interval = 0.1
+[output]
+checkpoint_interval_steps = 40
+checkpoint_interval_seconds = 0
+TOMLEOF
+"$CK" simulate "$WORK/tiny.toml" --out "$WORK/whole" --threads 1 --quiet >/dev/null 2>"$WORK/err" ||
+  fail "tiny impact exited $? ($(cat "$WORK/err"))"
+"$CK" simulate "$WORK/tiny.toml" --out "$WORK/killed" --threads 1 --quiet >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 1 600); do
+  [ -e "$WORK/killed/checkpoint.h5" ] && break
+  sleep 0.05
+done
+if kill -0 "$pid" 2>/dev/null; then
+  kill -KILL "$pid"
+  wait "$pid" 2>/dev/null
+  [ -e "$WORK/killed/crater.json" ] && fail "a killed run left a crater.json"
+  "$CK" simulate "$WORK/tiny.toml" --out "$WORK/killed" --threads 1 --quiet --resume >/dev/null 2>"$WORK/err" ||
+    fail "resumed tiny impact exited $? ($(cat "$WORK/err"))"
+  for file in crater.json crater_growth.csv ejecta.csv conservation.csv; do
+    cmp -s "$WORK/whole/$file" "$WORK/killed/$file" || fail "resumed run: $file differs from the uninterrupted run's"
+  done
+else
+  fail "the tiny impact ended before its first checkpoint could be killed"
+fi
 
 [ "$failures" -eq 0 ] && echo "all simulate CLI checks passed"
 exit "$failures"

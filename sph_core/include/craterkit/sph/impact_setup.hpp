@@ -107,6 +107,7 @@ struct ImpactSetup {
   DomainSymmetry symmetry = DomainSymmetry::full;
   double transition_time = 0.0;              // t_transition, s; 0: 10 R_dom / c
   double low_sound_speed_modulus = 0.027e6;  // A_low, Pa
+  double escape_speed = 0.0;  // m/s, the body's; 0: ejecta only by leaving the domain (ejecta.hpp)
   std::vector<ImpactBoulder> boulders;
 };
 
@@ -147,6 +148,7 @@ struct ImpactSummary {
   double transition_time = 0.0;  // s
   bool transition_time_from_rule = true;
   double low_sound_speed_modulus = 0.0;  // Pa
+  double escape_speed = 0.0;             // m/s (0: not used)
   // Particle counts.
   std::size_t target_particles = 0;      // matrix, including fixed
   std::size_t core_particles = 0;        // graded: target and boulder particles of the uniform core

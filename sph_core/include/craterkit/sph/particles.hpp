@@ -2,17 +2,18 @@
 // Particle storage: structure-of-arrays, one contiguous std::vector per field, owned by Particles.
 // Phases take the arrays they need (spans), so what each phase reads and writes is visible in its
 // signature. Distention is always present (one when non-porous). The solid-mechanics group
-// (deviatoric stress, accumulated strain and their rates, and the distention rate: 13 doubles,
-// 104 bytes per particle) is present only while `solid_fields` is true; a run whose materials have
-// neither strength nor porosity drops it (set_solid_fields(false)), and snapshots and checkpoints
-// then simply do not hold it. The distention rate belongs to this group rather than to the core so
-// that fluid runs (Sedov, Sod) carry nothing of the material models; a porous material without
-// strength therefore carries the (zero) stress fields too, a cost paid only in that rare case.
+// (deviatoric stress, accumulated strain and their rates, the distention rate and the kernel-gradient
+// correction matrix: 19 doubles, 152 bytes per particle) is present only while `solid_fields` is true; a run
+// whose materials have neither strength nor porosity drops it (set_solid_fields(false)), and snapshots and
+// checkpoints then simply do not hold it. The distention rate belongs to this group rather than to the core
+// so that fluid runs (Sedov, Sod) carry nothing of the material models; a porous material without strength
+// therefore carries the (zero) stress fields too, a cost paid only in that rare case.
 //
 // Every field is registered in for_each_field(), which is the single list used by sorting along the
 // space-filling curve, by snapshots and by checkpoints: adding a field means adding one line there.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -74,13 +75,20 @@ struct Particles {
   // P-alpha (only while solid_fields): dalpha/dt of the consistent rate of Jutzi et al. (2008), 1/s
   // (stress_rates.hpp, compute_distention_rates); zero for non-porous particles.
   std::vector<double> distention_rate;
+  // Randles & Libersky (1996) correction matrix L_i = [sum_j V_j (x_j - x_i) (x) grad_i W_ij]^-1 of the
+  // last rate evaluation (gradient_correction.hpp; only while solid_fields): symmetric, dimensionless,
+  // the identity in the bulk of a lattice and where the matrix is ill-conditioned. State, not scratch:
+  // with block time steps an inactive neighbour's L is the one of its last evaluation, so checkpoints
+  // hold it for a bitwise restart.
+  std::vector<double> correction_xx, correction_xy, correction_xz, correction_yy, correction_yz,
+      correction_zz;
 
   // Whether the solid-mechanics group (strength and porosity) is allocated (and visited by for_each_field).
   bool solid_fields = true;
 
   [[nodiscard]] std::size_t size() const { return x.size(); }
-  void resize(std::size_t n);  // new entries: zeros, distention 1, flags active
-  // Allocates the solid-mechanics group (zeros) or releases it; no-op if already so.
+  void resize(std::size_t n);  // new entries: zeros, distention 1, identity correction, flags active
+  // Allocates the solid-mechanics group (zeros, identity correction) or releases it; no-op if already so.
   void set_solid_fields(bool present);
   void reserve(std::size_t n);
   void shrink_to_fit();  // releases the growth slack of every field (set-ups build by push_back)
@@ -134,7 +142,16 @@ struct Particles {
     visit(std::string_view{"stress_rate_yz"}, stress_rate_yz);
     visit(std::string_view{"total_strain_rate"}, total_strain_rate);
     visit(std::string_view{"distention_rate"}, distention_rate);
+    visit(std::string_view{"correction_xx"}, correction_xx);
+    visit(std::string_view{"correction_xy"}, correction_xy);
+    visit(std::string_view{"correction_xz"}, correction_xz);
+    visit(std::string_view{"correction_yy"}, correction_yy);
+    visit(std::string_view{"correction_yz"}, correction_yz);
+    visit(std::string_view{"correction_zz"}, correction_zz);
   }
+  // The value of a field that files written before it existed do not hold (the identity correction
+  // matrix), or nullopt for a field every particle file must hold.
+  [[nodiscard]] static std::optional<double> default_for_absent_field(std::string_view name);
   template <class Visitor>
   void for_each_field(Visitor&& visit) const {
     const_cast<Particles*>(this)->for_each_field(

@@ -10,7 +10,7 @@
 // Material physics (equations of state) is evaluated per particle before this pass
 // (rates_pressure.hpp); the pair loop only reads P, c, 1/rho and m/rho.
 //
-// Equations (physics.md section 1), with one deviation in the continuity equation:
+// Equations for fluids (physics.md section 1), with one deviation in the continuity equation:
 //   drho_i/dt = rho_i sum_j (m_j/rho_j) v_ij . grad_i W_ij    (= -rho_i div v_i)
 //   dv_i/dt   = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I) . grad_i W_ij + g
 //   du_i/dt   = (P_i/rho_i^2) sum_j m_j v_ij . grad_i W_ij + (1/rho_i) S_i : U_i
@@ -29,6 +29,22 @@
 // energy-conserving pair by pair), fixes both (contact at rest: L1 0.005 against 0.030) but moves the
 // Sedov shock radius from -1.7 % to -3.2 % at 50^3 (over the 3 % bound), so it is not used. Neither
 // form was the cause of the wrong Sod star state: that was the smoothing length (docs/validation.md).
+//
+// Solids (RateOptions::solid: a material has strength) use the kernel-gradient correction L of every
+// particle (gradient_correction.hpp, computed in a pass before this one) in the stress divergence and its
+// work term, not only in the velocity gradient of the stress rate (physics.md section 1):
+//   dv_i/dt   = sum_j m_j (sigma_i L_i/rho_i^2 + sigma_j L_j/rho_j^2 - Pi_ij I) . grad_i W_ij + g,
+//   du_i/dt   = -sum_j m_j v_ij . (sigma_i L_i/rho_i^2) grad_i W_ij + (1/2) sum_j m_j Pi_ij v_ij . grad_i W_ij,
+//   grad v_i  = [sum_j V_j (v_j - v_i) (x) grad_i W_ij] . L_i  (stress rate),
+// sigma = S - P I; the density rate is the fluids' one. Why: with the uncorrected gradient a particle within
+// 2h of a free surface sees its tangential stress gradients short by up to 20 % (the kernel moment M is
+// 0.78 there instead of 1), and a free elastic plate came out too soft in bending (period +21.8 % at 6
+// particles across; +13.3 % with the correction, docs/validation.md "Elastic plate"). The pair force keeps
+// the form of the uncorrected one (any per-particle matrices L_i, L_j leave it antisymmetric, so momentum
+// is conserved exactly), and the work term is the force's own (u + kinetic energy conserved pair by pair).
+// The density stays uncorrected: with -rho tr(grad v) from the corrected gradient a collapsing granular
+// column blew up at its front within three free-fall times (the corrected divergence of a particle short
+// of neighbours need not see two particles approach), and the plate gained only 1 % from it.
 //
 // Mirror planes (RateOptions::mirror, mirror_image.hpp): a list entry may be a neighbour's mirror image,
 // whose position, velocity and deviatoric stress the pair body reflects before using them; nothing else
@@ -81,7 +97,8 @@ struct RateOptions {
   // Symmetry planes (mirror_planes(box)): list entries with image bits are the neighbour reflected
   // across them (mirror_image.hpp). Must be the planes the lists were built with.
   MirrorPlanes mirror{};
-  // Deviatoric stress terms in momentum and energy, and the corrected velocity gradient. Off for
+  // Stress terms in momentum and energy with the gradient correction (above), the corrected velocity
+  // gradient and density rate. Needs Particles::correction_* (compute_correction_matrices). Off for
   // fluids: the pair loop then carries no stress work at all.
   bool solid = false;
 };
@@ -95,9 +112,7 @@ struct PairList {
 };
 
 // Corrected velocity gradient (grad v)_ab = dv_a/dx_b per particle, row-major (xx, xy, xz, yx, ...), for
-// the stress rate. (The uncorrected one enters only the S:eps_dot work term of the energy equation, which
-// the pair pass adds itself, energy-consistent with the momentum equation, physics.md section 1.)
-// Filled only when RateOptions::solid is set.
+// the stress rate. Filled only when RateOptions::solid is set.
 struct VelocityGradients {
   std::array<std::vector<double>, 9> corrected;
   void resize(std::size_t n);

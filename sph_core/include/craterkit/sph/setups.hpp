@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "craterkit/sph/ejecta.hpp"
 #include "craterkit/sph/material.hpp"
 #include "craterkit/sph/neighbour_search.hpp"
 #include "craterkit/sph/particles.hpp"
@@ -71,9 +72,9 @@ struct ProblemSetup {
   std::vector<Material> materials;  // materials[id] for Particles::material == id
   Box box;
   LateStagePlan late_stage{};
-  // Ejecta (docs/impact_setup.md): a moving particle above the pre-impact plane z = 0 farther than
-  // ejection_radius from the origin leaves the hydrodynamics (0: no ejection).
-  double ejection_radius = 0.0;  // m
+  // Ejecta (ejecta.hpp, docs/impact_setup.md): which moving particles above the pre-impact plane z = 0
+  // leave the hydrodynamics (radius 0: none).
+  EjectionRule ejection{};
   // Constant attributes of the run written into every snapshot and checkpoint (e.g. the impact's).
   RunAttributes attributes{};
 };
