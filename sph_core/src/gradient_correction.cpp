@@ -60,6 +60,20 @@ double smallest_eigenvalue(const std::array<double, 6>& m) noexcept {
   return std::min({a[0][0], a[1][1], a[2][2]});
 }
 
+std::array<double, 6> correction_matrix(std::array<double, 6> M) noexcept {
+  // Where a direction is short of neighbours (edges, corners, splashes) M is lifted so that its smallest
+  // eigenvalue is min_correction_eigenvalue: L is bounded by its inverse.
+  const double lift = min_correction_eigenvalue - smallest_eigenvalue(M);
+  if (lift > 0.0) {
+    M[0] += lift;
+    M[3] += lift;
+    M[5] += lift;
+  }
+  std::array<double, 6> L{1.0, 0.0, 0.0, 1.0, 0.0, 1.0};
+  (void)invert_symmetric(M, L);  // cannot fail once lifted (M = 0, no neighbours, gives 2.5 I)
+  return L;
+}
+
 namespace {
 
 inline double wrap(double d, double period, double half) noexcept {
@@ -109,16 +123,7 @@ void correction_impl(Particles& p, const PairList& pairs, const RateOptions& opt
       M[4] += w * dy * dz;
       M[5] += w * dz * dz;
     }
-    // Where a direction is short of neighbours (edges, corners, splashes) M is lifted so that its smallest
-    // eigenvalue is min_correction_eigenvalue: L is bounded by its inverse.
-    const double lift = min_correction_eigenvalue - smallest_eigenvalue(M);
-    if (lift > 0.0) {
-      M[0] += lift;
-      M[3] += lift;
-      M[5] += lift;
-    }
-    std::array<double, 6> L{1.0, 0.0, 0.0, 1.0, 0.0, 1.0};
-    (void)invert_symmetric(M, L);  // cannot fail once lifted; the identity would remain otherwise
+    const std::array<double, 6> L = correction_matrix(M);
     p.correction_xx[i] = L[0];
     p.correction_xy[i] = L[1];
     p.correction_xz[i] = L[2];

@@ -1,5 +1,7 @@
 #include "craterkit/sph/rates.hpp"
 
+#include "craterkit/sph/gradient_correction.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -53,17 +55,69 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   std::uint32_t* neighbour_count = workspace.neighbour_count.data();
   workspace.signal_time.resize(p.size());
   double* signal_time = workspace.signal_time.data();
-  const double* sxx = p.stress_xx.data();
-  const double* sxy = p.stress_xy.data();
-  const double* sxz = p.stress_xz.data();
-  const double* syy = p.stress_yy.data();
-  const double* syz = p.stress_yz.data();
-  const double* lxx = p.correction_xx.data();
-  const double* lxy = p.correction_xy.data();
-  const double* lxz = p.correction_xz.data();
-  const double* lyy = p.correction_yy.data();
-  const double* lyz = p.correction_yz.data();
-  const double* lzz = p.correction_zz.data();
+  // Solids: B = sigma L / rho^2 (sigma = S - P I, L the stored correction matrix of
+  // gradient_correction.hpp) of every particle, the half of the corrected stress force and of the work term
+  // that belongs to one particle of a pair. Computed once per particle here instead of once per pair in the
+  // loop (a pair then reads 9 values of B_j instead of S_j, P_j and L_j and computing sigma_j L_j);
+  // every particle, because the selected ones read the neighbours' B.
+  std::array<const double*, 9> stress_force{};
+  if constexpr (solid) {
+    const double* sxx = p.stress_xx.data();
+    const double* sxy = p.stress_xy.data();
+    const double* sxz = p.stress_xz.data();
+    const double* syy = p.stress_yy.data();
+    const double* syz = p.stress_yz.data();
+    const double* lxx = p.correction_xx.data();
+    const double* lxy = p.correction_xy.data();
+    const double* lxz = p.correction_xz.data();
+    const double* lyy = p.correction_yy.data();
+    const double* lyz = p.correction_yz.data();
+    const double* lzz = p.correction_zz.data();
+    const double* pressure_all = p.pressure.data();
+    const double* inv_rho_all = workspace.inverse_density.data();
+    std::array<double*, 9> B{};
+    for (int k = 0; k < 9; ++k) {
+      workspace.stress_force[k].resize(p.size());
+      B[k] = workspace.stress_force[k].data();
+      stress_force[k] = B[k];
+    }
+    const auto all = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < all; ++i) {
+      const double inv_rho2 = inv_rho_all[i] * inv_rho_all[i];
+      const double P = pressure_all[i];
+      const double s_xx = sxx[i] - P, s_xy = sxy[i], s_xz = sxz[i], s_yy = syy[i] - P, s_yz = syz[i];
+      const double s_zz = -(sxx[i] + syy[i]) - P;
+      const double l_xx = lxx[i], l_xy = lxy[i], l_xz = lxz[i], l_yy = lyy[i], l_yz = lyz[i], l_zz = lzz[i];
+      B[0][i] = (s_xx * l_xx + s_xy * l_xy + s_xz * l_xz) * inv_rho2;
+      B[1][i] = (s_xx * l_xy + s_xy * l_yy + s_xz * l_yz) * inv_rho2;
+      B[2][i] = (s_xx * l_xz + s_xy * l_yz + s_xz * l_zz) * inv_rho2;
+      B[3][i] = (s_xy * l_xx + s_yy * l_xy + s_yz * l_xz) * inv_rho2;
+      B[4][i] = (s_xy * l_xy + s_yy * l_yy + s_yz * l_yz) * inv_rho2;
+      B[5][i] = (s_xy * l_xz + s_yy * l_yz + s_yz * l_zz) * inv_rho2;
+      B[6][i] = (s_xz * l_xx + s_yz * l_xy + s_zz * l_xz) * inv_rho2;
+      B[7][i] = (s_xz * l_xy + s_yz * l_yy + s_zz * l_yz) * inv_rho2;
+      B[8][i] = (s_xz * l_xz + s_yz * l_yz + s_zz * l_zz) * inv_rho2;
+    }
+  }
+  const double* bxx_all = stress_force[0];
+  const double* bxy_all = stress_force[1];
+  const double* bxz_all = stress_force[2];
+  const double* byx_all = stress_force[3];
+  const double* byy_all = stress_force[4];
+  const double* byz_all = stress_force[5];
+  const double* bzx_all = stress_force[6];
+  const double* bzy_all = stress_force[7];
+  const double* bzz_all = stress_force[8];
+  // This evaluation's correction matrices go to the workspace and replace the stored ones after the pass
+  // (the pass reads the stored ones of the neighbours, like the Balsara factors).
+  std::array<double*, 6> correction_next{};
+  if constexpr (solid) {
+    for (int k = 0; k < 6; ++k) {
+      workspace.correction_next[k].resize(p.size());
+      correction_next[k] = workspace.correction_next[k].data();
+    }
+  }
   const std::uint8_t* flags = p.flags.data();
   const std::uint64_t* offsets = pairs.offsets.data();
   const std::uint32_t* neighbours = pairs.neighbours.data();
@@ -118,26 +172,14 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
     // Solid-only state and accumulators (dead code, removed by the compiler, for fluids; the stress and
     // correction arrays are not even allocated then, so they are read only under `solid`).
-    // B_i = sigma_i L_i / rho_i^2 (sigma = S - P I, L the correction matrix of gradient_correction.hpp): the
-    // i half of the corrected stress force and of the work term.
     double bxx = 0.0, bxy = 0.0, bxz = 0.0, byx = 0.0, byy = 0.0, byz = 0.0, bzx = 0.0, bzy = 0.0, bzz = 0.0;
     if constexpr (solid) {
-      const double inv_rho2i = inv_rhoi * inv_rhoi;
-      const double Pi = pressure[i];
-      const double s_xx = sxx[i] - Pi, s_xy = sxy[i], s_xz = sxz[i], s_yy = syy[i] - Pi, s_yz = syz[i];
-      const double s_zz = -(sxx[i] + syy[i]) - Pi;
-      const double l_xx = lxx[i], l_xy = lxy[i], l_xz = lxz[i], l_yy = lyy[i], l_yz = lyz[i], l_zz = lzz[i];
-      bxx = (s_xx * l_xx + s_xy * l_xy + s_xz * l_xz) * inv_rho2i;
-      bxy = (s_xx * l_xy + s_xy * l_yy + s_xz * l_yz) * inv_rho2i;
-      bxz = (s_xx * l_xz + s_xy * l_yz + s_xz * l_zz) * inv_rho2i;
-      byx = (s_xy * l_xx + s_yy * l_xy + s_yz * l_xz) * inv_rho2i;
-      byy = (s_xy * l_xy + s_yy * l_yy + s_yz * l_yz) * inv_rho2i;
-      byz = (s_xy * l_xz + s_yy * l_yz + s_yz * l_zz) * inv_rho2i;
-      bzx = (s_xz * l_xx + s_yz * l_xy + s_zz * l_xz) * inv_rho2i;
-      bzy = (s_xz * l_xy + s_yz * l_yy + s_zz * l_yz) * inv_rho2i;
-      bzz = (s_xz * l_xz + s_yz * l_yz + s_zz * l_zz) * inv_rho2i;
+      bxx = bxx_all[i], bxy = bxy_all[i], bxz = bxz_all[i];
+      byx = byx_all[i], byy = byy_all[i], byz = byz_all[i];
+      bzx = bzx_all[i], bzy = bzy_all[i], bzz = bzz_all[i];
     }
     double G[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // sum V_j (v_j - v_i) (x) grad W
+    std::array<double, 6> M{0, 0, 0, 0, 0, 0};  // sum V_j (x_j - x_i) (x) grad W: xx, xy, xz, yy, yz, zz
     double work = 0.0;  // -sum_j m_j v_ij . (B_i grad W): pressure and deviatoric work, matched to the force
 
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
@@ -193,23 +235,16 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       }
 
       if constexpr (solid) {
-        // + m_j (B_i + B_j) grad_i W_ij, B = sigma L / rho^2: B_i grad W from the registers, B_j grad W as
-        // sigma_j (L_j grad W) / rho_j^2 (the image's L and S: off-diagonals reflected like S).
+        // + m_j (B_i + B_j) grad_i W_ij, B = sigma L / rho^2 (the image's B: off-diagonals reflected like S).
         const double tix = bxx * gx + bxy * gy + bxz * gz;
         const double tiy = byx * gx + byy * gy + byz * gz;
         const double tiz = bzx * gx + bzy * gy + bzz * gz;
-        const double jl_xy = image.shear(0, 1, lxy[j]), jl_xz = image.shear(0, 2, lxz[j]),
-                     jl_yz = image.shear(1, 2, lyz[j]);
-        const double lgx = lxx[j] * gx + jl_xy * gy + jl_xz * gz;
-        const double lgy = jl_xy * gx + lyy[j] * gy + jl_yz * gz;
-        const double lgz = jl_xz * gx + jl_yz * gy + lzz[j] * gz;
-        const double Pj = pressure[j];
-        const double jxx = sxx[j] - Pj, jxy = image.shear(0, 1, sxy[j]), jxz = image.shear(0, 2, sxz[j]);
-        const double jyy = syy[j] - Pj, jyz = image.shear(1, 2, syz[j]);
-        const double jzz = -(sxx[j] + syy[j]) - Pj;
-        const double tjx = (jxx * lgx + jxy * lgy + jxz * lgz) * inv_rho2j;
-        const double tjy = (jxy * lgx + jyy * lgy + jyz * lgz) * inv_rho2j;
-        const double tjz = (jxz * lgx + jyz * lgy + jzz * lgz) * inv_rho2j;
+        const double tjx =
+            bxx_all[j] * gx + image.shear(0, 1, bxy_all[j]) * gy + image.shear(0, 2, bxz_all[j]) * gz;
+        const double tjy =
+            image.shear(0, 1, byx_all[j]) * gx + byy_all[j] * gy + image.shear(1, 2, byz_all[j]) * gz;
+        const double tjz =
+            image.shear(0, 2, bzx_all[j]) * gx + image.shear(1, 2, bzy_all[j]) * gy + bzz_all[j] * gz;
         ax += mj * (tix + tjx);
         ay += mj * (tiy + tjy);
         az += mj * (tiz + tjz);
@@ -225,6 +260,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
         G[6] -= dvz * vgx;
         G[7] -= dvz * vgy;
         G[8] -= dvz * vgz;
+        M[0] -= dx * vgx;
+        M[1] -= dx * vgy;
+        M[2] -= dx * vgz;
+        M[3] -= dy * vgy;
+        M[4] -= dy * vgz;
+        M[5] -= dz * vgz;
       }
     }
 
@@ -234,9 +275,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     drho_out[i] = rhoi * vv_grad;
     if constexpr (solid) {
       du_out[i] = work + 0.5 * viscous;
+      // This evaluation's L_i: for the corrected velocity gradient G . L_i (Randles & Libersky 1996) of the
+      // stress rate now, and for the force in the next evaluation (gradient_correction.hpp).
+      const std::array<double, 6> L = correction_matrix(M);
+      for (int k = 0; k < 6; ++k) correction_next[k][i] = L[k];
       if (gradients != nullptr) {
-        // Corrected velocity gradient G . L_i (Randles & Libersky 1996) for the stress rate.
-        const double Lm[9] = {lxx[i], lxy[i], lxz[i], lxy[i], lyy[i], lyz[i], lxz[i], lyz[i], lzz[i]};
+        const double Lm[9] = {L[0], L[1], L[2], L[1], L[3], L[4], L[2], L[4], L[5]};
         for (int a = 0; a < 3; ++a) {
           for (int b = 0; b < 3; ++b) {
             gradients->corrected[3 * a + b][i] =
@@ -276,6 +320,16 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     min_signal_time = std::min(min_signal_time, signal_time[i]);
     interacting += count;
     neighbour_count[i] = static_cast<std::uint32_t>(count);
+  }
+  if constexpr (solid) {
+    std::array<double*, 6> stored{p.correction_xx.data(), p.correction_xy.data(), p.correction_xz.data(),
+                                  p.correction_yy.data(), p.correction_yz.data(), p.correction_zz.data()};
+#pragma omp parallel for schedule(static)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = selection.at(static_cast<std::size_t>(ii));
+      if ((flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
+      for (int k = 0; k < 6; ++k) stored[k][i] = correction_next[k][i];
+    }
   }
   if (use_balsara) {
     double* factor = p.balsara.data();

@@ -207,6 +207,15 @@ Simulation::Simulation(SimulationConfig config, ProblemSetup problem)
     : config_(std::move(config)), problem_(std::move(problem)), search_(config_.neighbours.search) {
   configure();
   update_smoothing_length(problem_.particles, config_.smoothing);
+  if (rate_options_.solid) {
+    // The first force needs the correction matrices of the initial state (later ones come from the rate
+    // pass before, gradient_correction.hpp).
+    update_neighbours();
+    update_equation_of_state();
+    compute_correction_matrices(problem_.particles, PairList{lists_.offsets, lists_.neighbours},
+                                rate_options_, rate_workspace_,
+                                ParticleSelection::all(problem_.particles.size()));
+  }
   evaluate_rates();
   limits_ = update_time_steps(problem_.particles, rate_workspace_.signal_time, time_step_parameters(),
                               ParticleSelection::all(problem_.particles.size()));
@@ -298,11 +307,6 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
                               rate_options_.period, rate_options_.mirror);
   }
   update_equation_of_state(state_for);
-  if (rate_options_.solid) {
-    auto scope = timers_.measure("correction");
-    compute_correction_matrices(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
-                                rate_workspace_, rates_for);
-  }
   {
     auto scope = timers_.measure("rates");
     rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
@@ -523,6 +527,8 @@ double Simulation::bytes_per_particle() const {
     bytes += v->capacity() * sizeof(double);
   }
   for (const auto& v : gradients_.corrected) bytes += v.capacity() * sizeof(double);
+  for (const auto& v : rate_workspace_.correction_next) bytes += v.capacity() * sizeof(double);
+  for (const auto& v : rate_workspace_.stress_force) bytes += v.capacity() * sizeof(double);
   bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
   bytes += rate_workspace_.volume.capacity() * sizeof(double);
   bytes += order_.capacity() * sizeof(std::uint32_t);

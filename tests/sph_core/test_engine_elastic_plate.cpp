@@ -7,21 +7,22 @@
 // the same dispersion relation Gray et al. use for their clamped plate (kL = 1.875 there). Mode shape
 //   phi(x) = cosh kx + cos kx - s (sinh kx + sin kx),  s = (cosh kL - cos kL)/(sinh kL - sin kL),
 // phi(0) = 2. The plate starts straight and unstressed with v_z = V phi(x)/2 (V: velocity of the end),
-// V giving an end amplitude V/omega of 1 % of L (linear theory; geometric stiffening goes with the
-// amplitude squared).
+// V giving an end amplitude V/omega of 0.1 % of L: the linear regime of the theory, largest bending strain
+// 7.5e-4 (geometric stiffening goes with the amplitude squared).
 // Why free-free rather than Gray's cantilever: fixed particles carry no stress, so a clamp made of them
 // acts on the plate like a stress-free surface (the pair force from a fixed neighbour j holds only
 // sigma_i/rho_i^2) and the root becomes a compliant hinge; a first attempt with a 4-cell fixed clamp
 // reached its first turning point only after ~0.11 s instead of T/4 = 0.064 s (period 50-70 % too long).
 // Gray et al. clamp the plate between wall particles; without a stress-carrying boundary in the engine
 // the free plate tests the bending stiffness of the bulk and of the free surfaces alone.
-// Result (label slow, documented failing): the period is 22 % long at 6 particles across. Cause: the
-// momentum and work terms use the uncorrected kernel gradient (physics.md section 1, for exact energy
-// conservation); at a particle half a spacing below a free surface the kernel sum of the tangential
-// strain, sum_j V_j (x_j - x_i) dW/dx, is ~0.6 instead of 1, and in bending the outer layers carry most
-// of the moment: the effective bending stiffness is ~0.7 EI at 6 across (period +19 %), falling as 1/n.
-// Thick-plate corrections (shear, rotary inertia; Timoshenko) lengthen the period by
-// O((kH)^2/24 (1 + E/(kappa G))) ~ 1-2 % at L = 15 H.
+// Result (label slow): at 0.1 % of L the period converges from above, +4.6 % at 8 particles across
+// (docs/validation.md "Elastic plate"). Two things make a coarse plate soft: the kernel sums of particles
+// within 2h of the free surfaces (corrected since the stress divergence uses the Randles-Libersky matrix,
+// rates.hpp; before, +21.8 % at 6 across and 1 % of L) and, at larger amplitudes, the tensile side of the
+// bending: at 1 % of L (strain 7.5e-3) the period is 13-21 % long and does not converge (4, 6, 8 across),
+// the tensile instability of SPH (Swegle et al. 1995), which the artificial stress of Gray et al.
+// addresses (not implemented). Thick-plate corrections (shear, rotary inertia; Timoshenko) lengthen the
+// period by O((kH)^2/24 (1 + E/(kappa G))) ~ 1-2 % at L = 15 H.
 // Measured: the mean vertical displacement of the particles of the end columns crosses zero at T/2 and T;
 // the period is the least-squares slope through t = 0 and the two crossings.
 #include <gtest/gtest.h>
@@ -32,6 +33,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -72,11 +74,9 @@ struct PlateRun {
   double wall_seconds;
 };
 
-constexpr double relative_amplitude = 0.01;  // end amplitude V/omega over L
-
 // particles_across: lattice cells across the thickness; the periodic width is 7 cells (the neighbour
 // search needs more than twice the interaction range 2 (1 + skin) (h_i + h_j)).
-PlateRun run_plate(int particles_across) {
+PlateRun run_plate(int particles_across, double relative_amplitude) {
   const auto wall_start = std::chrono::steady_clock::now();
   const double dx = plate_thickness / particles_across;
   const int along = static_cast<int>(std::lround(plate_length / dx));
@@ -161,14 +161,31 @@ void write_record(const PlateRun& run, const std::string& name) {
     out << run.times[k] << "," << run.end_displacement[k] << "\n";
 }
 
-// Label slow, documented failing (docs/validation.md): at 6 particles across the period is ~22 % long.
-// The error falls with resolution (asserted), as the free-surface kernel deficiency that causes it.
+// Resolutions 4, 6 and 8 particles across at an end amplitude of 0.1 % of L; for studies the environment
+// may set others: CRATERKIT_PLATE_RESOLUTIONS (comma-separated) and CRATERKIT_PLATE_AMPLITUDE (over L).
+std::vector<int> resolutions() {
+  std::vector<int> out;
+  if (const char* list = std::getenv("CRATERKIT_PLATE_RESOLUTIONS")) {
+    std::stringstream s(list);
+    std::string item;
+    while (std::getline(s, item, ',')) out.push_back(std::stoi(item));
+    return out;
+  }
+  return {4, 6, 8};
+}
+
+double relative_amplitude() {
+  const char* value = std::getenv("CRATERKIT_PLATE_AMPLITUDE");
+  return value != nullptr ? std::stod(value) : 1e-3;
+}
+
+// The error falls with resolution and is within 5 % at the finest.
 TEST(EngineElasticPlateSlow, PeriodOfFreePlateMatchesThinPlateTheory) {
   const double T = analytic_period();
-  double previous_error = INFINITY;
-  for (const int across : {4, 6}) {
-    const PlateRun run = run_plate(across);
-    const double error = run.period / T - 1.0;
+  double previous_error = INFINITY, error = INFINITY;
+  for (const int across : resolutions()) {
+    const PlateRun run = run_plate(across, relative_amplitude());
+    error = run.period / T - 1.0;
     std::printf(
         "free plate, %d across (%zu particles, %.1f s): period %.5f s, analytic %.5f s, error %+.2f %%, end "
         "amplitude %.3f %% of L\n",
@@ -177,10 +194,8 @@ TEST(EngineElasticPlateSlow, PeriodOfFreePlateMatchesThinPlateTheory) {
     write_record(run, "plate_" + std::to_string(across) + ".csv");
     EXPECT_LT(std::abs(error), std::abs(previous_error));  // converges
     previous_error = error;
-    if (across == 6) {
-      EXPECT_NEAR(run.period / T, 1.0, 0.05);
-    }
   }
+  EXPECT_LT(std::abs(error), 0.05);
 }
 
 }  // namespace

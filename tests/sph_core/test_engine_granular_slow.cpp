@@ -1,6 +1,8 @@
-// Granular flow, long runs (label slow; docs/validation.md, "Granular flow"): the flank of the deposit
-// left by a collapsed column against the angle of repose, and the run-out at a = 0.5.
-// Set-up and measurements in granular_setup.hpp; material and parameters as in test_engine_granular.cpp.
+// Granular flow, long runs (label slow; docs/validation.md, "Granular flow"): the tilted layer at f = 0.7
+// and the run-out at a = 1.5 (their f = 0.4 and a = 1 companions run in CI, test_engine_granular.cpp), the
+// flank of the deposit left by a collapsed column against the angle of repose, and the run-out at a = 0.5.
+// Set-ups in granular_setup.hpp, runs and measurements in granular_checks.hpp; material and parameters as
+// in test_engine_granular.cpp.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -11,16 +13,18 @@
 #include <numbers>
 #include <string>
 
-#include "sph_core/granular_setup.hpp"
+#include "sph_core/granular_checks.hpp"
 
 namespace {
 
 using namespace granular_test;
 
-constexpr double degrees = 180.0 / std::numbers::pi;
+TEST(GranularRepose, TiltedLayerFrictionPointSeven) {
+  check_critical_slope(0.7);
+}
 
-double repose_angle_degrees(double friction) {
-  return std::asin(3.0 * friction / (2.0 * std::sqrt(2.0) + friction)) * degrees;
+TEST(GranularCollapse, RunoutAspectRatioOneAndHalf) {
+  EXPECT_NEAR(runout_ratio(18, 12, 10.0, "collapse_a150.csv") / (1.2 * 1.5), 1.0, 0.2);
 }
 
 // A column of aspect ratio a = H0/L0 = 0.5 (16 x 32 cells) against the back wall, released from the

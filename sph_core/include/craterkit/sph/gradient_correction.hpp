@@ -11,9 +11,16 @@
 // L = c I with c within 2 % of 1; where it matters is within 2h of a free surface, where the uncorrected
 // kernel moments are short by 20 % (tangential) to 50 % (normal) (docs/validation.md, "Elastic plate").
 //
-// A separate pass before the rate pass, because the momentum equation of particle i reads L_j of its
-// neighbours: the pair force m_i m_j (sigma_i L_i / rho_i^2 + sigma_j L_j / rho_j^2) grad_i W_ij stays
-// antisymmetric in (i, j) only if both L are the same in the sums of i and of j.
+// Where L comes from: the momentum equation of particle i reads L_j of its neighbours, and the pair force
+// m_i m_j (sigma_i L_i / rho_i^2 + sigma_j L_j / rho_j^2) grad_i W_ij stays antisymmetric in (i, j) only
+// if both L are the same in the sums of i and of j, so every L must be known before the pair pass. The
+// rate pass (rates.hpp) therefore uses in the force the L of every particle's previous rate evaluation
+// (Particles::correction_*), and accumulates M_i itself to give the velocity gradient of the stress rate
+// the current L_i and to store it for the next evaluation. compute_correction_matrices() below, a separate
+// pass over the pairs, gives the current L where there is no previous one (the first evaluation of a run).
+// Why not that pass at every evaluation: it cost 30 % of the solid pair pass (callgrind, 249e6 against
+// 832e6 instructions, bench/RESULTS.md) for a change of L over one step of order dt |grad v| (dt the
+// Courant step, so at most ~0.3 |v_rel|/c of the particle's neighbourhood).
 #include <array>
 
 #include "craterkit/sph/kernel.hpp"
@@ -35,6 +42,10 @@ inline constexpr double min_correction_eigenvalue = 0.4;
 
 // The smallest eigenvalue of the symmetric 3x3 matrix m = (xx, xy, xz, yy, yz, zz).
 [[nodiscard]] double smallest_eigenvalue(const std::array<double, 6>& m) noexcept;
+
+// L from M = sum_j V_j (x_j - x_i) (x) grad_i W_ij (symmetric, xx, xy, xz, yy, yz, zz): M lifted to the
+// smallest eigenvalue min_correction_eigenvalue where it is below, then inverted.
+[[nodiscard]] std::array<double, 6> correction_matrix(std::array<double, 6> M) noexcept;
 
 // Inverts the symmetric 3x3 matrix m = (xx, xy, xz, yy, yz, zz) into inverse (same order). Returns false,
 // leaving inverse untouched, when m is ill-conditioned: |det m| below 1e-3 of the product of its row norms

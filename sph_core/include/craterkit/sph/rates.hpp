@@ -31,10 +31,12 @@
 // form was the cause of the wrong Sod star state: that was the smoothing length (docs/validation.md).
 //
 // Solids (RateOptions::solid: a material has strength) use the kernel-gradient correction L of every
-// particle (gradient_correction.hpp, computed in a pass before this one) in the stress divergence and its
-// work term, not only in the velocity gradient of the stress rate (physics.md section 1):
+// particle (gradient_correction.hpp: in the force the L of the previous evaluation, Particles::correction_*;
+// in the stress rate the one this pass computes) in the stress divergence and its work term, not only in the
+// velocity gradient of the stress rate (physics.md section 1):
 //   dv_i/dt   = sum_j m_j (sigma_i L_i/rho_i^2 + sigma_j L_j/rho_j^2 - Pi_ij I) . grad_i W_ij + g,
-//   du_i/dt   = -sum_j m_j v_ij . (sigma_i L_i/rho_i^2) grad_i W_ij + (1/2) sum_j m_j Pi_ij v_ij . grad_i W_ij,
+//   du_i/dt   = -sum_j m_j v_ij . (sigma_i L_i/rho_i^2) grad_i W_ij
+//               + (1/2) sum_j m_j Pi_ij v_ij . grad_i W_ij,
 //   grad v_i  = [sum_j V_j (v_j - v_i) (x) grad_i W_ij] . L_i  (stress rate),
 // sigma = S - P I; the density rate is the fluids' one. Why: with the uncorrected gradient a particle within
 // 2h of a free surface sees its tangential stress gradients short by up to 20 % (the kernel moment M is
@@ -97,9 +99,9 @@ struct RateOptions {
   // Symmetry planes (mirror_planes(box)): list entries with image bits are the neighbour reflected
   // across them (mirror_image.hpp). Must be the planes the lists were built with.
   MirrorPlanes mirror{};
-  // Stress terms in momentum and energy with the gradient correction (above), the corrected velocity
-  // gradient and density rate. Needs Particles::correction_* (compute_correction_matrices). Off for
-  // fluids: the pair loop then carries no stress work at all.
+  // Stress terms in momentum and energy with the gradient correction (above) and the corrected velocity
+  // gradient. Reads Particles::correction_* (of the previous evaluation, or compute_correction_matrices)
+  // and replaces them with this evaluation's. Off for fluids: the pair loop then carries no stress work.
   bool solid = false;
 };
 
@@ -131,6 +133,12 @@ struct RateWorkspace {
   // The Balsara factors computed by the pass (ArtificialViscosity::balsara), copied to Particles::balsara
   // after it.
   std::vector<double> balsara_next;
+  // Solids: the correction matrices L of this evaluation (xx, xy, xz, yy, yz, zz), copied to
+  // Particles::correction_* after the pass (gradient_correction.hpp).
+  std::array<std::vector<double>, 6> correction_next;
+  // Solids: B = sigma L / rho^2 of every particle (xx, xy, xz, yx, yy, yz, zx, zy, zz), the per-particle
+  // half of the corrected stress force, computed at the start of the pass.
+  std::array<std::vector<double>, 9> stress_force;
 };
 
 struct RateSummary {
