@@ -143,9 +143,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   std::printf(
-      "| particles | threads | problem | s/step | particle updates/s | neighbours/particle | bytes/particle "
-      "| "
-      "solid/hydro step | phases (share of wall time) |\n|---|---|---|---|---|---|---|---|---|\n");
+      "| particles | threads | problem | s/step (wall) | CPU s/step | particle updates/s | "
+      "neighbours/particle | bytes/particle | solid/hydro step (wall; CPU) | phases (share of wall time) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
   for (const int n : sides) {
     for (const int t : thread_counts) {
       const auto hydro = measure(n, t, steps, false);

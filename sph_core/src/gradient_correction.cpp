@@ -1,5 +1,7 @@
 #include "craterkit/sph/gradient_correction.hpp"
 
+#include "craterkit/sph/minimum_image.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -76,12 +78,6 @@ std::array<double, 6> correction_matrix(std::array<double, 6> M) noexcept {
 
 namespace {
 
-inline double wrap(double d, double period, double half) noexcept {
-  if (d > half) return d - period;
-  if (d < -half) return d + period;
-  return d;
-}
-
 template <class Kernel, bool mirrored>
 void correction_impl(Particles& p, const PairList& pairs, const RateOptions& options, const double* volume,
                      const ParticleSelection& selection) {
@@ -108,9 +104,9 @@ void correction_impl(Particles& p, const PairList& pairs, const RateOptions& opt
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
       const MirrorImage image = mirror_image<mirrored>(neighbours[k]);
       const std::size_t j = image.index;
-      const double dx = wrap(xi - image.position(0, planes, x[j]), Lx, hx);
-      const double dy = wrap(yi - image.position(1, planes, y[j]), Ly, hy);
-      const double dz = wrap(zi - image.position(2, planes, z[j]), Lz, hz);
+      const double dx = minimum_image(xi - image.position(0, planes, x[j]), Lx, hx);
+      const double dy = minimum_image(yi - image.position(1, planes, y[j]), Ly, hy);
+      const double dz = minimum_image(zi - image.position(2, planes, z[j]), Lz, hz);
       const double r2 = dx * dx + dy * dy + dz * dz;
       const double hsum = hi + h[j];
       if (r2 >= hsum * hsum || r2 <= 0.0) continue;

@@ -1,6 +1,7 @@
 #include "craterkit/sph/rates.hpp"
 
 #include "craterkit/sph/gradient_correction.hpp"
+#include "craterkit/sph/minimum_image.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,13 +18,6 @@ std::string_view viscosity_switch_name(ViscositySwitch s) noexcept {
 }
 
 namespace {
-
-// Minimum-image wrap along one axis; half = +infinity for a non-periodic axis (never wraps).
-inline double wrap(double d, double period, double half) noexcept {
-  if (d > half) return d - period;
-  if (d < -half) return d + period;
-  return d;
-}
 
 template <class Kernel, bool solid, bool mirrored>
 RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
@@ -187,9 +181,9 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       // image (without mirror planes bits is the constant 0 and the mapping compiles away).
       const MirrorImage image = mirror_image<mirrored>(neighbours[k]);
       const std::size_t j = image.index;
-      const double dx = wrap(xi - image.position(0, planes, x[j]), Lx, hx);
-      const double dy = wrap(yi - image.position(1, planes, y[j]), Ly, hy);
-      const double dz = wrap(zi - image.position(2, planes, z[j]), Lz, hz);
+      const double dx = minimum_image(xi - image.position(0, planes, x[j]), Lx, hx);
+      const double dy = minimum_image(yi - image.position(1, planes, y[j]), Ly, hy);
+      const double dz = minimum_image(zi - image.position(2, planes, z[j]), Lz, hz);
       const double r2 = dx * dx + dy * dy + dz * dz;
       const double hsum = hi + h[j];
       if (r2 >= hsum * hsum || r2 <= 0.0) continue;

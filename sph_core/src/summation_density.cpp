@@ -1,5 +1,7 @@
 #include "craterkit/sph/summation_density.hpp"
 
+#include "craterkit/sph/minimum_image.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -7,12 +9,6 @@
 namespace craterkit::sph {
 
 namespace {
-
-inline double minimum_image(double d, double period, double half) noexcept {
-  if (d > half) return d - period;
-  if (d < -half) return d + period;
-  return d;
-}
 
 template <class Kernel, bool mirrored>
 void summation_impl(Particles& p, const PairList& pairs, const std::array<double, 3>& period,
