@@ -35,7 +35,7 @@ for path in sorted(glob.glob(os.path.join(directory, "plate_*.csv")), key=lambda
 ax.axhline(0, color="k", lw=0.5)
 ax.set_xlabel("t (s)")
 ax.set_ylabel("end displacement (mm)")
-ax.set_title(f"Free plate, L = 15 H, rho = 1000 kg/m3, E = 2 MPa, nu = 0.3975, end amplitude {100 * relative_amplitude:g} % of L")
+ax.set_title(f"Free plate, L = 15 H, E = 2 MPa, nu = 0.3975; end amplitude {100 * relative_amplitude:g} % of L", fontsize=10)
 ax.legend(fontsize=8)
 fig.tight_layout()
 fig.savefig(png, dpi=110)

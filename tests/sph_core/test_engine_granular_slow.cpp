@@ -23,8 +23,10 @@ TEST(GranularRepose, TiltedLayerFrictionPointSeven) {
   check_critical_slope(0.7);
 }
 
+// Run for 15 sqrt(H/g): with the corrected stress divergence the deposit is still settling at 10 (rms speed
+// 0.015 sqrt(gH), over the 0.01 of "at rest"; 0.0014 at 15, run-out unchanged at 1.833).
 TEST(GranularCollapse, RunoutAspectRatioOneAndHalf) {
-  EXPECT_NEAR(runout_ratio(18, 12, 10.0, "collapse_a150.csv") / (1.2 * 1.5), 1.0, 0.2);
+  EXPECT_NEAR(runout_ratio(18, 12, 15.0, "collapse_a150.csv") / (1.2 * 1.5), 1.0, 0.2);
 }
 
 // A column of aspect ratio a = H0/L0 = 0.5 (16 x 32 cells) against the back wall, released from the

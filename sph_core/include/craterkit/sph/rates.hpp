@@ -41,7 +41,8 @@
 // sigma = S - P I; the density rate is the fluids' one. Why: with the uncorrected gradient a particle within
 // 2h of a free surface sees its tangential stress gradients short by up to 20 % (the kernel moment M is
 // 0.78 there instead of 1), and a free elastic plate came out too soft in bending (period +21.8 % at 6
-// particles across; +13.3 % with the correction, docs/validation.md "Elastic plate"). The pair force keeps
+// particles across and 1 % of L; +13.4 % with the correction; +4.6 % at 8 across and 0.1 % of L,
+// docs/validation.md "Elastic plate"). The pair force keeps
 // the form of the uncorrected one (any per-particle matrices L_i, L_j leave it antisymmetric, so momentum
 // is conserved exactly), and the work term is the force's own (u + kinetic energy conserved pair by pair).
 // The density stays uncorrected: with -rho tr(grad v) from the corrected gradient a collapsing granular
