@@ -103,14 +103,12 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   const double* bzx_all = stress_force[6];
   const double* bzy_all = stress_force[7];
   const double* bzz_all = stress_force[8];
-  // This evaluation's correction matrices go to the workspace and replace the stored ones after the pass
-  // (the pass reads the stored ones of the neighbours, like the Balsara factors).
-  std::array<double*, 6> correction_next{};
+  // This evaluation's correction matrices are written over the stored ones as the pass goes: the pair loop
+  // reads the stored L only through B, computed above, so no particle sees a neighbour's new L.
+  std::array<double*, 6> correction{};
   if constexpr (solid) {
-    for (int k = 0; k < 6; ++k) {
-      workspace.correction_next[k].resize(p.size());
-      correction_next[k] = workspace.correction_next[k].data();
-    }
+    correction = {p.correction_xx.data(), p.correction_xy.data(), p.correction_xz.data(),
+                  p.correction_yy.data(), p.correction_yz.data(), p.correction_zz.data()};
   }
   const std::uint8_t* flags = p.flags.data();
   const std::uint64_t* offsets = pairs.offsets.data();
@@ -272,7 +270,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       // This evaluation's L_i: for the corrected velocity gradient G . L_i (Randles & Libersky 1996) of the
       // stress rate now, and for the force in the next evaluation (gradient_correction.hpp).
       const std::array<double, 6> L = correction_matrix(M);
-      for (int k = 0; k < 6; ++k) correction_next[k][i] = L[k];
+      for (int k = 0; k < 6; ++k) correction[k][i] = L[k];
       if (gradients != nullptr) {
         const double Lm[9] = {L[0], L[1], L[2], L[1], L[3], L[4], L[2], L[4], L[5]};
         for (int a = 0; a < 3; ++a) {
@@ -314,16 +312,6 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     min_signal_time = std::min(min_signal_time, signal_time[i]);
     interacting += count;
     neighbour_count[i] = static_cast<std::uint32_t>(count);
-  }
-  if constexpr (solid) {
-    std::array<double*, 6> stored{p.correction_xx.data(), p.correction_xy.data(), p.correction_xz.data(),
-                                  p.correction_yy.data(), p.correction_yz.data(), p.correction_zz.data()};
-#pragma omp parallel for schedule(static)
-    for (std::int64_t ii = 0; ii < n; ++ii) {
-      const auto i = selection.at(static_cast<std::size_t>(ii));
-      if ((flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
-      for (int k = 0; k < 6; ++k) stored[k][i] = correction_next[k][i];
-    }
   }
   if (use_balsara) {
     double* factor = p.balsara.data();

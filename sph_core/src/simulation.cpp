@@ -527,7 +527,6 @@ double Simulation::bytes_per_particle() const {
     bytes += v->capacity() * sizeof(double);
   }
   for (const auto& v : gradients_.corrected) bytes += v.capacity() * sizeof(double);
-  for (const auto& v : rate_workspace_.correction_next) bytes += v.capacity() * sizeof(double);
   for (const auto& v : rate_workspace_.stress_force) bytes += v.capacity() * sizeof(double);
   bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
   bytes += rate_workspace_.volume.capacity() * sizeof(double);

@@ -134,9 +134,6 @@ struct RateWorkspace {
   // The Balsara factors computed by the pass (ArtificialViscosity::balsara), copied to Particles::balsara
   // after it.
   std::vector<double> balsara_next;
-  // Solids: the correction matrices L of this evaluation (xx, xy, xz, yy, yz, zz), copied to
-  // Particles::correction_* after the pass (gradient_correction.hpp).
-  std::array<std::vector<double>, 6> correction_next;
   // Solids: B = sigma L / rho^2 of every particle (xx, xy, xz, yx, yy, yz, zx, zy, zz), the per-particle
   // half of the corrected stress force, computed at the start of the pass.
   std::array<std::vector<double>, 9> stress_force;
