@@ -2,7 +2,8 @@
 Usage: /usr/bin/python3 docs/scripts/plot_granular.py DIR docs/figures/granular.png
 DIR holds the CSV files the tests write when CRATERKIT_VALIDATION_OUTPUT=DIR is set:
   CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_granular
-  CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_granular_slow   (deposit_f0*.csv)
+  CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_granular_slow   (deposit_f0*.csv,
+                                                                                  pile_f0*.csv)
 Files that are missing are skipped."""
 import math
 import os
@@ -31,7 +32,7 @@ def theta(f):
     return math.degrees(math.asin(3 * f / (2 * math.sqrt(2) + f)))
 
 
-fig, axes = plt.subplots(2, 2, figsize=(12, 8.5))
+fig, axes = plt.subplots(3, 2, figsize=(12, 12.5))
 
 # (a) tilted layer: end-of-tilt mean downslope speed against the slope angle.
 ax = axes[0, 0]
@@ -95,6 +96,63 @@ ax.plot([0, 1.5, 1.5], [1, 1, 0], "k:", lw=0.8, label="initial cut")
 ax.set_xlabel("x / H")
 ax.set_ylabel("surface height / H")
 ax.set_title("(d) cohesive vertical cut after 5 sqrt(H/g)")
+ax.legend(fontsize=8)
+
+
+
+def flank_of(comment):
+    """The flank_deg=... entry of a deposit's or pile's comment line."""
+    for word in comment.split():
+        if word.startswith("flank_deg="):
+            return float(word.split("=")[1])
+    return math.nan
+
+
+# (e) piles collapsed quasi-statically (drag 0.25 sqrt(H0/g)), with a line at theta(f) through the flank.
+ax = axes[2, 0]
+for f, colour in ((0.4, "C0"), (0.55, "C2"), (0.7, "C1")):
+    comment, data = read(f"pile_f{round(100 * f):03d}.csv")
+    if data is None:
+        continue
+    x, z = data[:, 0] / 0.08, data[:, 1] / 0.08
+    ax.plot(x, z, "-", color=colour, lw=1.2, label=f"f = {f}: flank {flank_of(comment):.1f} deg, theta(f) {theta(f):.1f}")
+    # theta(f) through the point of the profile at half the height, on the falling side
+    half = np.argmax((z < 0.5 * z.max()) & (np.arange(len(z)) > np.argmax(z)))
+    t = math.tan(math.radians(theta(f)))
+    ax.plot([x[half] - 0.4 / t, x[half] + 0.4 / t], [z[half] + 0.4, z[half] - 0.4], "--", color=colour, lw=0.8)
+ax.plot([0, 2, 2], [1, 1, 0], "k:", lw=0.8)
+ax.set_xlabel("x / H0")
+ax.set_ylabel("surface height / H0")
+ax.set_title("(e) a = 0.5 columns collapsed quasi-statically (dashed: theta(f))")
+ax.set_xlim(0, 3.5)
+ax.legend(fontsize=8)
+
+# (f) measured angles against f.
+ax = axes[2, 1]
+fs = np.linspace(0.35, 0.75, 50)
+ax.plot(fs, [theta(f) for f in fs], "k-", label="theta(f) (Luther et al. 2022)")
+ax.fill_between(fs, [theta(f) - 3 for f in fs], [theta(f) + 3 for f in fs], color="k", alpha=0.08,
+                label="+-3 deg")
+ax.plot(fs, np.degrees(np.arctan(fs)), "k:", label="atan(f) (infinite slope)")
+ax.plot(fs, np.degrees(np.arcsin(fs)), "k--", lw=0.8, label="asin(f) (plane-strain Mohr-Coulomb)")
+for pattern, marker, label in (("pile_f{:03d}.csv", "o", "quasi-static pile"),
+                               ("deposit_f{:03d}.csv", "v", "free collapse deposit"),
+                               ("tilt_f{:03d}.csv", "s", "tilted layer")):
+    points = []
+    for f in (0.4, 0.55, 0.7):
+        comment, data = read(pattern.format(round(100 * f)))
+        if data is None:
+            continue
+        if pattern.startswith("tilt"):
+            angle = float(comment.split("critical_deg=")[1].split()[0])
+        else:
+            angle = flank_of(comment)
+        points.append((f, angle))
+    if points:
+        ax.plot(*zip(*points), marker, ms=7, ls="none", label=label)
+ax.set_xlabel("friction coefficient f")
+ax.set_ylabel("angle (deg)")
+ax.set_title("(f) angle of repose")
 ax.legend(fontsize=8)
 
 fig.tight_layout()
