@@ -1,10 +1,11 @@
 // Kernel-gradient correction matrices (gradient_correction.hpp): the symmetric inverse and the smallest
-// eigenvalue against Eigen, and L on a lattice block: the exact inverse of M in the bulk, lifted (largest
-// eigenvalue of L exactly 1/min_correction_eigenvalue) where M's smallest eigenvalue is below it: at edges
-// (0.29) and corners (0.23), not on the faces (0.49).
+// eigenvalue against Eigen, the Gershgorin shortcut against always lifting, and L on a lattice block: the
+// exact inverse of M in the bulk, lifted (largest eigenvalue of L exactly 1/min_correction_eigenvalue) where
+// M's smallest eigenvalue is below it: at edges (0.29) and corners (0.23), not on the faces (0.49).
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -53,6 +54,41 @@ TEST(GradientCorrection, InverseAndSmallestEigenvalueAgreeWithEigen) {
   std::array<double, 6> untouched{7.0, 7.0, 7.0, 7.0, 7.0, 7.0};
   EXPECT_FALSE(invert_symmetric(singular, untouched));
   EXPECT_EQ(untouched[0], 7.0);
+}
+
+// correction_matrix skips the eigenvalue where the Gershgorin bound already puts M above the floor: the
+// result must be bitwise that of always lifting by the eigenvalue, also for matrices whose bound or
+// smallest eigenvalue lies just above or below min_correction_eigenvalue.
+TEST(GradientCorrection, GershgorinShortcutGivesTheSameMatrixAsTheEigenvalue) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int skipped = 0, lifted = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double spread = (trial % 3 == 0) ? 0.02 : (trial % 3 == 1 ? 0.2 : 0.6);
+    const double floor = min_correction_eigenvalue;
+    std::array<double, 6> M{floor + 0.8 * (1.0 + u(rng)), spread * u(rng), spread * u(rng),
+                            floor + 0.8 * (1.0 + u(rng)), spread * u(rng), floor + 0.8 * (1.0 + u(rng))};
+    if (trial % 5 == 0) {  // a diagonal entry on the floor plus its row's off-diagonal sum, +- 1e-12
+      M[0] = floor + std::abs(M[1]) + std::abs(M[2]) + 1e-12 * u(rng);
+    }
+    std::array<double, 6> reference = M;
+    const double lift = floor - smallest_eigenvalue(M);
+    if (lift > 0.0) {
+      reference[0] += lift;
+      reference[3] += lift;
+      reference[5] += lift;
+      ++lifted;
+    }
+    std::array<double, 6> expected{1.0, 0.0, 0.0, 1.0, 0.0, 1.0};
+    (void)invert_symmetric(reference, expected);
+    const double bound =
+        std::min({M[0] - std::abs(M[1]) - std::abs(M[2]), M[3] - std::abs(M[1]) - std::abs(M[4]),
+                  M[5] - std::abs(M[2]) - std::abs(M[4])});
+    skipped += bound > floor ? 1 : 0;
+    EXPECT_EQ(correction_matrix(M), expected) << "trial " << trial;
+  }
+  EXPECT_GT(skipped, 5000);  // both paths are exercised
+  EXPECT_GT(lifted, 1000);
 }
 
 // A 10^3 block of unit spacing, h = 1.2: M and L per particle, recomputed here from the lists.
