@@ -47,6 +47,7 @@ nlohmann::json summary_json(const sph::SimulationSummary& s) {
                         {"mean_neighbours", s.mean_neighbours},
                         {"relative_energy_error", s.relative_energy_error},
                         {"relative_momentum_error", s.relative_momentum_error},
+                        {"momentum_conserved", s.momentum_conserved},
                         {"bytes_per_particle", s.bytes_per_particle},
                         {"threads", s.threads},
                         {"resumed", s.resumed},
@@ -120,8 +121,16 @@ void run_simulate(const SimulateOptions& options) {
              summary.threads);
   fmt::print("  {:.4g} particle updates/s, {:.1f} neighbours/particle, {:.0f} bytes/particle\n",
              summary.particle_updates_per_second, summary.mean_neighbours, summary.bytes_per_particle);
-  fmt::print("  relative energy error {:.3e}, relative momentum error {:.3e}\n",
-             summary.relative_energy_error, summary.relative_momentum_error);
+  if (summary.momentum_conserved) {
+    fmt::print("  relative energy error {:.3e}, relative momentum error {:.3e}\n",
+               summary.relative_energy_error, summary.relative_momentum_error);
+  } else {
+    fmt::print(
+        "  relative energy error {:.3e}; momentum not conserved here (gravity, fixed particles or mirror "
+        "planes act "
+        "on the particles): it changed by {:.3e} of the particles' momentum\n",
+        summary.relative_energy_error, summary.relative_momentum_error);
+  }
   if (summary.crater) {
     fmt::print("  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m{}; ejected {} particles ({:.4g} kg)\n",
                summary.crater->crater_radius, summary.crater->crater_radius_uncertainty,

@@ -805,6 +805,11 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   summary.mean_neighbours = sim->mean_neighbours();
   summary.relative_energy_error = relative_energy_error(sim->initial_conserved(), final_state);
   summary.relative_momentum_error = relative_momentum_error(sim->initial_conserved(), final_state);
+  const auto& gravity = sim->config().run.gravity;
+  const bool has_fixed =
+      std::any_of(p.flags.begin(), p.flags.end(), [](std::uint8_t f) { return (f & particle_fixed) != 0; });
+  summary.momentum_conserved = gravity[0] == 0.0 && gravity[1] == 0.0 && gravity[2] == 0.0 && !has_fixed &&
+                               !mirror_planes(sim->box()).any();
   summary.bytes_per_particle = sim->bytes_per_particle();
   summary.neighbour_rebuilds = sim->neighbour_rebuilds();
   summary.phase_seconds = timers.seconds_by_phase();

@@ -116,6 +116,7 @@ TEST(Restart, SummaryReportsTheIssueFigures) {
   EXPECT_GT(s.mean_neighbours, 40.0);
   EXPECT_LT(s.mean_neighbours, 80.0);
   EXPECT_LT(s.relative_momentum_error, 1e-12);
+  EXPECT_TRUE(s.momentum_conserved);  // no gravity, no fixed particles, no mirror planes
   EXPECT_LT(s.relative_energy_error, 1e-3);
   EXPECT_EQ(s.snapshots.size(), 3u);  // t = 0, 0.01 and the final state
   EXPECT_TRUE(fs::exists(dir / "snapshots.xdmf"));

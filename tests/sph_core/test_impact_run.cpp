@@ -89,6 +89,7 @@ TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater
 
   // Late stage.
   EXPECT_TRUE(summary.late_stage);
+  EXPECT_FALSE(summary.momentum_conserved);  // gravity, the fixed shell (and mirror planes) act
   EXPECT_EQ(summary.transition_time, 0.01);
 
   // Mass: what is left in the particles plus what ejecta.csv recorded is the initial mass, and the rows

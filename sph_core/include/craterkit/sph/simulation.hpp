@@ -215,6 +215,10 @@ struct SimulationSummary {
   double mean_neighbours = 0.0;
   double relative_energy_error = 0.0;
   double relative_momentum_error = 0.0;
+  // False when external forces act on the particles - gravity, fixed (boundary) particles, mirror planes -
+  // so that total momentum is not conserved: relative_momentum_error is then the momentum they took up
+  // (for an impact into a target held by its shell, about the projectile's), not an error of the scheme.
+  bool momentum_conserved = true;
   double bytes_per_particle = 0.0;
   int threads = 1;
   bool resumed = false;
