@@ -126,9 +126,8 @@ void run_simulate(const SimulateOptions& options) {
                summary.relative_energy_error, summary.relative_momentum_error);
   } else {
     fmt::print(
-        "  relative energy error {:.3e}; momentum not conserved here (gravity, fixed particles or mirror "
-        "planes act "
-        "on the particles): it changed by {:.3e} of the particles' momentum\n",
+        "  relative energy error {:.3e}; momentum not conserved here (gravity, fixed particles or mirror\n"
+        "  planes act on the particles): it changed by {:.3e} of the particles' momentum\n",
         summary.relative_energy_error, summary.relative_momentum_error);
   }
   if (summary.crater) {
