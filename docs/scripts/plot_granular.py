@@ -52,7 +52,8 @@ ax.legend(fontsize=8)
 
 # (b) collapse deposits (surface profiles), normalised by the initial column.
 ax = axes[0, 1]
-for name, label, h0, l0 in (("collapse_a100.csv", "a = 1, f = 0.55", 0.08, 0.08),
+for name, label, h0, l0 in (("collapse_a050.csv", "a = 0.5, f = 0.55 (slow)", 0.08, 0.16),
+                            ("collapse_a100.csv", "a = 1, f = 0.55", 0.08, 0.08),
                             ("collapse_a150.csv", "a = 1.5, f = 0.55", 0.09, 0.06),
                             ("deposit_f040.csv", "a = 0.5, f = 0.4 (slow)", 0.08, 0.16),
                             ("deposit_f070.csv", "a = 0.5, f = 0.7 (slow)", 0.08, 0.16)):
@@ -71,7 +72,8 @@ ax = axes[1, 0]
 a = np.linspace(0, 2, 50)
 ax.plot(a, 1.2 * a, "k-", label="Lube et al. 2005: 1.2 a")
 ax.fill_between(a, 0.96 * a, 1.44 * a, color="k", alpha=0.08, label="+-20 %")
-for name, aspect, marker in (("collapse_a100.csv", 1.0, "o"), ("collapse_a150.csv", 1.5, "s"),
+for name, aspect, marker in (("collapse_a050.csv", 0.5, "D"), ("collapse_a100.csv", 1.0, "o"),
+                             ("collapse_a150.csv", 1.5, "s"),
                              ("deposit_f040.csv", 0.5, "^"), ("deposit_f070.csv", 0.5, "v")):
     comment, data = read(name)
     if data is None:

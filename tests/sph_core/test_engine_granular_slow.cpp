@@ -23,6 +23,12 @@ TEST(GranularRepose, TiltedLayerFrictionPointSeven) {
   check_critical_slope(0.7);
 }
 
+// a = 0.5 (16 x 32 cells, the column of the deposit tests below, on their 72-cell floor: the deposit reaches
+// 50 cells), f = 0.55 like a = 1 and 1.5: at rest after 10 sqrt(H/g).
+TEST(GranularCollapse, RunoutAspectRatioHalf) {
+  EXPECT_NEAR(runout_ratio(16, 32, 10.0, "collapse_a050.csv", 72) / (1.2 * 0.5), 1.0, 0.2);
+}
+
 // Run for 15 sqrt(H/g): with the corrected stress divergence the deposit is still settling at 10 (rms speed
 // 0.015 sqrt(gH), over the 0.01 of "at rest"; 0.0014 at 15, run-out unchanged at 1.833).
 TEST(GranularCollapse, RunoutAspectRatioOneAndHalf) {
