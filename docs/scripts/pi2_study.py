@@ -182,7 +182,7 @@ def main(argv):
         beta = -q
         mu = 2 * beta / (1 - beta)
         mu_error = 2 * q_error / (1 - beta) ** 2 if math.isfinite(q_error) else math.nan
-        fit = (p, q)
+        fit = (p, q, mu)
         law_mu = law["constants"]["mu"]
         print(f"fit: pi_R = {math.exp(p):.3f} pi_2^(-{beta:.4f}) -> mu = {mu:.3f} +- {mu_error:.3f} "
               f"({law_name}: mu = {law_mu}, beta = {law_mu / (2 + law_mu):.4f})")
@@ -214,9 +214,8 @@ def main(argv):
         sigma = r["crater_radius_sigma"] / r["crater_radius"] * r["piR"]
         ax.errorbar(r["pi2"], r["piR"], yerr=sigma, fmt="o", ms=6, capsize=3, label=r["label"])
     if fit is not None:
-        p, q = fit
-        ax.loglog(grid, [math.exp(p) * x ** q for x in grid], "C3--",
-                  label=f"fit: mu = {2 * -q / (1 + q):.3f}")
+        p, q, mu = fit
+        ax.loglog(grid, [math.exp(p) * x ** q for x in grid], "C3--", label=f"fit: mu = {mu:.3f}")
     ax.set_xlabel("pi_2 = g a / U^2")
     ax.set_ylabel("pi_R = R (rho / m)^(1/3)")
     ax.set_title("Cohesionless craters against pi_2")
