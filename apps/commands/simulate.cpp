@@ -67,6 +67,8 @@ nlohmann::json summary_json(const sph::SimulationSummary& s) {
     out["crater_radius_uncertainty"] = number_or_null(s.crater->crater_radius_uncertainty);
     out["crater_depth"] = number_or_null(s.crater->depth);
     out["crater_growth_ended"] = s.crater_growth_ended;
+    out["crater_growth_end_time"] = number_or_null(s.crater_growth_end_time.value_or(NAN));
+    out["crater_growth_end_radius"] = number_or_null(s.crater_growth_end_radius.value_or(NAN));
     out["crater_json"] = s.crater_json;
     out["ejected_particles"] = s.ejected_particles;
     out["ejected_mass"] = s.ejected_mass;
@@ -135,6 +137,11 @@ void run_simulate(const SimulateOptions& options) {
                summary.crater->crater_radius, summary.crater->crater_radius_uncertainty,
                summary.crater->depth, summary.crater_growth_ended ? " (crater growth ended)" : "",
                summary.ejected_particles, summary.ejected_mass);
+    if (!summary.crater_growth_ended && summary.crater_growth_end_time) {
+      fmt::print(
+          "  crater growth ended at t = {:.6g} s (radius {:.4g} m then); the run went on to t = {:.6g} s\n",
+          *summary.crater_growth_end_time, *summary.crater_growth_end_radius, summary.time);
+    }
   }
   if (summary.late_stage) {
     fmt::print("  late stage from t = {:.6g} s: largest Mach number {:.4g} at the switch, {:.4g} after\n",

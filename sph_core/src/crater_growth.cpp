@@ -14,15 +14,27 @@ bool crater_growth_ended(std::span<const CraterGrowthSample> samples, const Crat
   if (!(peak > 0.0)) return false;
   const double start = (1.0 - c.window_fraction) * last.time;
   std::size_t in_window = 0;
+  double smallest = last.radius, largest = last.radius;
   for (const auto& s : samples) {
     if (s.time < start) continue;
     ++in_window;
-    if (!std::isfinite(s.radius) || std::abs(s.radius - last.radius) > c.radius_tolerance * last.radius) {
-      return false;
-    }
+    if (!std::isfinite(s.radius)) return false;
+    smallest = std::min(smallest, s.radius);
+    largest = std::max(largest, s.radius);
     if (s.kinetic_energy > c.kinetic_energy_fraction * peak) return false;
   }
-  return in_window >= c.min_window_samples;
+  // The whole band of the window, not each sample against the last one: a crater whose measured radius
+  // jumped inwards by ~1 % and then grew again would otherwise look settled while it still grows (the SCI
+  // run of docs/crater_measurement.md, "End of crater growth").
+  return in_window >= c.min_window_samples && largest - smallest <= c.radius_tolerance * last.radius;
+}
+
+std::optional<std::size_t> first_sample_of_ended_growth(std::span<const CraterGrowthSample> samples,
+                                                        const CraterGrowthCriteria& criteria) {
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    if (crater_growth_ended(samples.first(k + 1), criteria)) return k;
+  }
+  return std::nullopt;
 }
 
 double moving_kinetic_energy(const Particles& p) {

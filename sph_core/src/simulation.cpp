@@ -782,6 +782,10 @@ SimulationSummary run_simulation(const SimulationConfig& config, const RunOption
   }
   if (scenario.impact) {
     auto scope = timers.measure("crater");
+    if (const auto k = first_sample_of_ended_growth(growth, criteria)) {
+      summary.crater_growth_end_time = growth[*k].time;
+      summary.crater_growth_end_radius = growth[*k].radius;
+    }
     summary.crater = measure_crater(p, measurement);
     if (files) {
       write_crater_files(out, *summary.crater, sim->time());

@@ -237,8 +237,12 @@ struct SimulationSummary {
   std::size_t ejected_particles = 0;
   double ejected_mass = 0.0;  // kg (in this domain)
   std::string ejecta_log;
-  bool crater_growth_ended = false;         // stopped because growth ended (else end_time or max_steps)
-  std::optional<CraterMeasurement> crater;  // final measurement
+  bool crater_growth_ended = false;  // stopped because growth ended (else end_time or max_steps)
+  // The first sample of crater_growth.csv at which the end-of-growth rule held (also when the run went on
+  // with stop_when_grown = false), and its radius (m, the axis radii of the sample).
+  std::optional<double> crater_growth_end_time;    // s
+  std::optional<double> crater_growth_end_radius;  // m
+  std::optional<CraterMeasurement> crater;         // final measurement
   std::string crater_json;
 };
 
