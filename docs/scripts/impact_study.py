@@ -15,8 +15,9 @@ the change and the run points at it. VALUE is TOML (a number, a quoted string, a
 Runs already finished (OUT_DIR/NAME/summary.json complete) are skipped; a run with a checkpoint but no
 summary is resumed (`--resume`), so the study can be killed and started again. --jobs runs that many at
 a time (each with --threads threads, default 1). At the end OUT_DIR/results.csv lists every run: name,
-overrides, crater radius and its uncertainty (m), depth (m), whether growth ended, end time (s),
-particles, steps, wall seconds and particle updates per second.
+overrides, crater radius and its uncertainty (m), depth (m), whether the run stopped because growth
+ended, when growth ended and the radius then (also for runs that went on, `crater.stop_when_grown=false`;
+empty if it never did), end time (s), particles, steps, wall seconds and particle updates per second.
 
 Only the Python standard library is needed (tomllib: Python >= 3.11).
 """
@@ -202,7 +203,7 @@ def main(argv):
         with ThreadPoolExecutor(max_workers=jobs) as pool:
             list(pool.map(lambda r: run_one(craterkit, threads, r), runs))
     fields = ["name", "overrides", "crater_radius_m", "crater_radius_uncertainty_m", "depth_m",
-              "growth_ended", "time_s", "particles", "steps", "wall_seconds", "particle_updates_per_second"]
+              "growth_ended", "growth_end_time_s", "growth_end_radius_m", "time_s", "particles", "steps", "wall_seconds", "particle_updates_per_second"]
     rows = []
     for name, overrides, run_dir, _ in runs:
         s = read_summary(run_dir) or {}
@@ -210,6 +211,8 @@ def main(argv):
                      "crater_radius_m": s.get("crater_radius", ""),
                      "crater_radius_uncertainty_m": s.get("crater_radius_uncertainty", ""),
                      "depth_m": s.get("crater_depth", ""), "growth_ended": s.get("crater_growth_ended", ""),
+                     "growth_end_time_s": s.get("crater_growth_end_time") or "",
+                     "growth_end_radius_m": s.get("crater_growth_end_radius") or "",
                      "time_s": s.get("time", ""), "particles": s.get("particles", ""),
                      "steps": s.get("steps", ""), "wall_seconds": s.get("wall_seconds", ""),
                      "particle_updates_per_second": s.get("particle_updates_per_second", "")})
