@@ -22,7 +22,8 @@ velocity, target_density, gravity, strength, crater_radius, crater_radius_sigma)
 
 Runs with a cohesion are refused (the study is of the gravity regime); so are runs whose crater growth did
 not end (their radius is a lower bound). A run that went on past the end of growth (`[crater]
-stop_when_grown = false`; its summary's crater_growth_end_time is set) counts with its final crater.
+stop_when_grown = false`; its summary's crater_growth_end_time is set) counts with its radius at the end of
+growth (crater_growth_end_radius), the radius the default rule reports, not that of its final state.
 """
 import csv
 import json
@@ -89,13 +90,17 @@ def run_parameters(label, run_dir):
     with open(summary_path) as f:
         summary = json.load(f)
     # A run that stopped at the end of growth, or went on past it (stop_when_grown = false: the summary's
-    # crater_growth_end_time says when the rule first held; the radius is then that of the final state).
-    if not summary.get("crater_growth_ended", False) and summary.get("crater_growth_end_time") is None:
+    # crater_growth_end_time says when the rule first held, crater_growth_end_radius the radius then, which
+    # is the radius a run with the default rule reports).
+    if summary.get("crater_growth_ended", False):
+        radius = summary.get("crater_radius")
+    elif summary.get("crater_growth_end_time") is not None:
+        radius = summary.get("crater_growth_end_radius")
+    else:
         fail(f"{label}: crater growth had not ended at t = {summary.get('time')} s ({summary_path}); its "
              "radius is only a lower bound")
-    radius = summary.get("crater_radius")
     if radius is None:
-        fail(f"{label}: no crater_radius in {summary_path}")
+        fail(f"{label}: no crater radius in {summary_path}")
     return {
         "label": label,
         "mass": mass,

@@ -357,6 +357,30 @@ ParticleSelection Simulation::neighbourhood_of(std::span<const std::uint32_t> pa
   return ParticleSelection::listed(needed_list_);
 }
 
+namespace {
+
+// A collapsed block step, said with the particle and its limits (time_step.hpp), so that a user can tell
+// where and why (a particle squeezed to nothing, a runaway acceleration, ...).
+[[noreturn]] void throw_collapse(const TimeStepCollapse& collapse, const Particles& p,
+                                 std::span<const double> signal_time, const TimeStepParameters& parameters,
+                                 double time) {
+  const std::size_t i = collapse.particle;
+  const TimeStepLimits l = particle_time_step_limits(p, i, signal_time[i], parameters);
+  const double speed = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+  char text[512];
+  std::snprintf(
+      text, sizeof text,
+      "%s, at t = %.6g s: particle id %llu (material %u) at (%.4g, %.4g, %.4g) m, density %.4g kg/m^3, "
+      "smoothing length %.3g m, sound speed %.4g m/s, speed %.4g m/s; its limits (s): Courant %.3g, "
+      "acceleration %.3g, density change %.3g, energy change %.3g, velocity change %.3g",
+      collapse.what(), time, static_cast<unsigned long long>(p.id[i]), unsigned(p.material[i]), p.x[i],
+      p.y[i], p.z[i], p.density[i], p.smoothing_length[i], p.sound_speed[i], speed, l.courant, l.acceleration,
+      l.density, l.energy, l.velocity);
+  throw std::runtime_error(text);
+}
+
+}  // namespace
+
 void Simulation::advance_block(double block) {
   auto& p = problem_.particles;
   const auto all = ParticleSelection::all(p.size());
@@ -372,7 +396,11 @@ void Simulation::advance_block(double block) {
   update_neighbours(all_indices_);
   {
     auto scope = timers_.measure("schedule");
-    schedule_.start(block, p.time_step, p.flags, active_, lists_);
+    try {
+      schedule_.start(block, p.time_step, p.flags, active_, lists_);
+    } catch (const TimeStepCollapse& collapse) {
+      throw_collapse(collapse, p, rate_workspace_.signal_time, time_step_parameters(), time_);
+    }
   }
   const TimeStepParameters parameters = time_step_parameters();
   while (!schedule_.finished()) {
@@ -407,7 +435,11 @@ void Simulation::advance_block(double block) {
       auto scope = timers_.measure("schedule");
       (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
       if (!schedule_.finished()) {
-        schedule_.relevel(p.time_step, lists_);
+        try {
+          schedule_.relevel(p.time_step, lists_);
+        } catch (const TimeStepCollapse& collapse) {
+          throw_collapse(collapse, p, rate_workspace_.signal_time, parameters, time_ + schedule_.elapsed());
+        }
         begin_step(p, integrator_workspace_, active);
       }
     }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <string>
 #include <vector>
 
 #include "craterkit/sph/block_time_steps.hpp"
@@ -24,6 +25,7 @@ TEST(BlockLevel, SmallestLevelWithinTheLimit) {
   EXPECT_EQ(block_level(1.0, std::ldexp(1.0, -40)), 40);
   EXPECT_GT(block_level(1.0, 0.0), block_finest_level_limit);
   EXPECT_GT(block_level(1.0, 1e-300), block_finest_level_limit);
+  EXPECT_GT(block_level(1.0, std::nan("")), block_finest_level_limit);  // NaN: an error, not level 0
 }
 
 namespace {
@@ -111,10 +113,17 @@ TEST(BlockSchedule, LevelsRefineWithinTheBlockAndCoarsenOnlyWhereAligned) {
   EXPECT_EQ(count, 3);
 }
 
-TEST(BlockSchedule, CollapsedStepIsAnError) {
-  const auto lists = chain(2);
-  const std::vector<double> step{1e-300, 1.0};
-  const std::vector<std::uint8_t> flags(2, particle_active);
+TEST(BlockSchedule, CollapsedStepIsAnErrorThatNamesTheParticle) {
+  const auto lists = chain(3);
+  const std::vector<double> step{1.0, 1e-300, 1.0};
+  const std::vector<std::uint8_t> flags(3, particle_active);
   BlockSchedule s;
-  EXPECT_THROW(s.start(1.0, step, flags, 2, lists), std::runtime_error);
+  try {
+    s.start(1.0, step, flags, 3, lists);
+    FAIL() << "no exception";
+  } catch (const TimeStepCollapse& e) {
+    EXPECT_EQ(e.particle, 1u);  // the simulation reports this particle's state and limits
+    EXPECT_NE(std::string(e.what()).find("1e-300 s needs more than 50 halvings"), std::string::npos)
+        << e.what();
+  }
 }

@@ -29,6 +29,8 @@
 // so momentum and energy are conserved to the integration error, not to round-off as with a global step.
 #include <cstdint>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "craterkit/sph/neighbour_search.hpp"
@@ -37,6 +39,14 @@
 namespace craterkit::sph {
 
 constexpr int block_finest_level_limit = 50;
+
+// Thrown when a particle's step needs more than block_finest_level_limit halvings of the block: `particle`
+// is its index, so that the caller can say which particle and which limit (Simulation does).
+struct TimeStepCollapse : std::runtime_error {
+  TimeStepCollapse(const std::string& what, std::size_t particle_index)
+      : std::runtime_error(what), particle(particle_index) {}
+  std::size_t particle;
+};
 // A particle is at most this many levels coarser than any neighbour (its step at most 2^this longer).
 inline constexpr int block_neighbour_levels = 1;
 
@@ -48,7 +58,7 @@ class BlockSchedule {
   // Starts a block of length `block` for the moving (neither fixed nor ejected) particles among the
   // first `count` (the lists' particles; the rest, ejected, never take part) from their own steps,
   // then raises levels until no particle is more than two levels coarser than a neighbour. Throws
-  // std::runtime_error if a level above block_finest_level_limit is needed.
+  // TimeStepCollapse if a level above block_finest_level_limit is needed (so does relevel()).
   void start(double block, std::span<const double> time_step, std::span<const std::uint8_t> flags,
              std::size_t count, const NeighbourLists& lists);
 
@@ -67,6 +77,10 @@ class BlockSchedule {
   void relevel(std::span<const double> time_step, const NeighbourLists& lists);
 
   [[nodiscard]] double block() const { return block_; }
+  // Time from the start of the block to the current tick, s.
+  [[nodiscard]] double elapsed() const {
+    return block_ * static_cast<double>(tick_) / static_cast<double>(ticks_per_block());
+  }
   [[nodiscard]] int finest_level() const { return finest_; }
   [[nodiscard]] std::uint64_t ticks_per_block() const { return std::uint64_t{1} << finest_; }
   // Number of particles at each level at the start of the block (for the log).
