@@ -25,15 +25,13 @@ int block_level(double block, double step) {
 
 namespace {
 
-void check_level(int level, double block, double step, std::size_t particle) {
-  if (level > block_finest_level_limit) {
-    char text[160];
-    std::snprintf(
-        text, sizeof text,
-        "time step collapsed: a particle's step %.3g s needs more than %d halvings of the block of %.3g s",
-        step, block_finest_level_limit, block);
-    throw TimeStepCollapse(text, particle);
-  }
+[[noreturn]] void throw_collapse(double block, double step, std::size_t particle) {
+  char text[160];
+  std::snprintf(
+      text, sizeof text,
+      "time step collapsed: a particle's step %.3g s needs more than %d halvings of the block of %.3g s",
+      step, block_finest_level_limit, block);
+  throw TimeStepCollapse(text, particle);
 }
 
 }  // namespace
@@ -68,8 +66,7 @@ void BlockSchedule::start(double block, std::span<const double> time_step,
     if (level > block_finest_level_limit) bad = std::max(bad, int(i));
     level_[i] = static_cast<std::uint8_t>(std::min(level, block_finest_level_limit));
   }
-  if (bad >= 0)
-    check_level(block_finest_level_limit + 1, block, time_step[std::size_t(bad)], std::size_t(bad));
+  if (bad >= 0) throw_collapse(block, time_step[std::size_t(bad)], std::size_t(bad));
   // Neighbour rule: sweeps (each reading the levels of the sweep before, so the result does not
   // depend on the thread count) until no particle is more than two levels coarser than a neighbour.
   std::vector<std::uint8_t> raised(count);
@@ -161,8 +158,7 @@ void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLi
     wanted[k] = static_cast<std::uint8_t>(level);
     highest = std::max(highest, level);
   }
-  if (bad >= 0)
-    check_level(block_finest_level_limit + 1, block_, time_step[std::size_t(bad)], std::size_t(bad));
+  if (bad >= 0) throw_collapse(block_, time_step[std::size_t(bad)], std::size_t(bad));
   refine_to(highest);
   for (std::size_t k = 0; k < active_.size(); ++k) {
     const std::size_t i = active_[k];
