@@ -21,15 +21,7 @@ namespace {
 
 using namespace granular_test;
 
-// (a) Angle of repose by tilting (granular_checks.hpp), f = 0.4 here; f = 0.7 is a slow test.
-TEST(GranularRepose, TiltedLayerFrictionPointFour) {
-  check_critical_slope(0.4);
-}
-
-// (b) Run-out at a = 1 (granular_checks.hpp); a = 1.5 and a = 0.5 are slow tests.
-TEST(GranularCollapse, RunoutAspectRatioOne) {
-  EXPECT_NEAR(runout_ratio(16, 16, 8.0, "collapse_a100.csv") / 1.2, 1.0, 0.2);
-}
+// (a) Angle of repose and (b) run-out: minutes-long runs, in test_engine_granular_slow.cpp (label slow).
 
 // ---------------------------------------------------------------------------------------------------
 // (c) Vertical cut in a cohesive material. A block 24 cells wide and H = 16 cells high against the back
