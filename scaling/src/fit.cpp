@@ -359,7 +359,10 @@ FitResult fit_scaling_law(const RadiiTable& table, const FitOptions& options) {
     for (int index : flagged) undetermined[index] = true;
   }
   // 2. Profile: chi^2 (others re-optimised) must rise by 4 (2 sigma) on both sides of the minimum within
-  //    a window of 4 natural scales; a side beyond a bound is not tested.
+  //    a window of 4 natural scales, clamped to the bounds: mu's window spans its whole range, so mu counts
+  //    as determined only where the data exclude both 1/3 and 2/3 at 2 sigma (a 2-sigma interval that
+  //    reaches a bound is set by the bound, not by the data). Only a side where the minimum sits on the
+  //    bound is not tested.
   const auto profile_rises = [&](int index) {
     const double window = 4.0 * determination_scale(index);
     for (const double sign : {-1.0, 1.0}) {
