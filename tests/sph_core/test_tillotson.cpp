@@ -126,6 +126,29 @@ TEST(Tillotson, ColdExpandedBranchHasNoQuadraticTerm) {
   EXPECT_NEAR(evaluate(aluminium, 2970.0, 0.0).pressure, 75.2e9 * 0.1 + 65.0e9 * 0.01, 1e-13 * 8.17e9);
 }
 
+// E < 0 is read as the cold state E = 0 (tillotson.hpp): no pole at E = -E0 eta^2, where the thermal factor
+// b/omega would send P to -inf or +inf; P continuous at E = 0 from below.
+TEST(Tillotson, NegativeEnergyIsTheColdStateWithoutThePole) {
+  for (const Tillotson* m : {&basalt, &aluminium}) {
+    const double rho0 = m->reference_density;
+    for (const double eta : {0.8, 0.95, 1.0, 1.05, 1.3}) {
+      const double rho = eta * rho0;
+      const auto cold = evaluate(*m, rho, 0.0);
+      const double pole = -m->E0 * eta * eta;
+      for (const double e : {std::nextafter(0.0, -1.0), -1e3, 0.5 * pole, pole, std::nextafter(pole, 0.0),
+                             std::nextafter(pole, -1e300), 3.0 * pole}) {
+        const auto s = evaluate(*m, rho, e);
+        EXPECT_EQ(s.pressure, cold.pressure) << "eta " << eta << " E " << e;
+        EXPECT_EQ(s.dpressure_ddensity, cold.dpressure_ddensity) << "eta " << eta << " E " << e;
+        EXPECT_EQ(s.dpressure_denergy, 0.0);
+      }
+      // The cold curve itself: A chi (+ B chi^2 in compression).
+      const double chi = eta - 1.0;
+      EXPECT_NEAR(cold.pressure, m->A * chi + (eta >= 1.0 ? m->B * chi * chi : 0.0), 1e-12 * m->A);
+    }
+  }
+}
+
 // Relative jump of f across a boundary, evaluated at the boundary value and its floating-point neighbour.
 double relative_jump(double below, double above, double scale) {
   return std::abs(above - below) / scale;

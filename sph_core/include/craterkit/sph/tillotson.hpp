@@ -24,8 +24,16 @@
 // P is continuous everywhere; dP/drho and c are continuous across rho = rho0; dP/dE (hence c) jumps
 // at E = E_iv and E = E_cv in expansion, a property of the Tillotson interpolation itself.
 //
-// Preconditions (the caller's; no checks in the hot path): density > 0 (density <= 0 returns P = 0
-// and c = c_min) and E > -E0 eta^2 (omega > 0).
+// Negative specific energy: the law is written for E >= 0 (E = 0 is the cold state), and its thermal
+// factor b/omega has a pole at E = -E0 eta^2 (-5 MJ/kg for aluminium at rho0), where P jumps from -inf
+// to +inf. E < 0 is not physical (the work of a reversible cycle about rho0 is >= 0) but a particle can
+// reach it numerically: the energy equation is not adiabatic where neighbour masses differ (rates.hpp),
+// and a light projectile stand-in ringing against a heavier target lost 30 MJ/kg in 0.2 ms, crossed the
+// pole and exploded (docs/validation.md, "The stand-in on the graded target"). So E < 0 is read as the
+// cold state E = 0 (the thermal terms vanish, dP/dE = 0); P stays continuous at E = 0. The particle keeps
+// its E (the energy budget still sums it).
+// Precondition (the caller's; no check in the hot path): density > 0 (density <= 0 returns P = 0
+// and c = c_min).
 #include <algorithm>
 #include <cmath>
 
@@ -91,6 +99,10 @@ inline Branch expanded(const Tillotson& m, double rho, double e) noexcept {
 }
 
 inline Branch branch(const Tillotson& m, double rho, double e) noexcept {
+  if (e < 0.0) {
+    const Branch cold = compressed(m, rho, 0.0, rho >= m.reference_density);
+    return Branch{cold.pressure, cold.dp_ddensity, 0.0};
+  }
   if (rho >= m.reference_density) return compressed(m, rho, e, true);
   if (e <= m.E_iv) return compressed(m, rho, e, false);
   if (e >= m.E_cv) return expanded(m, rho, e);
