@@ -28,10 +28,10 @@
 // factor b/omega has a pole at E = -E0 eta^2 (-5 MJ/kg for aluminium at rho0), where P jumps from -inf
 // to +inf. E < 0 is not physical (the work of a reversible cycle about rho0 is >= 0) but a particle can
 // reach it numerically: the energy equation is not adiabatic where neighbour masses differ (rates.hpp),
-// and a light projectile stand-in ringing against a heavier target lost 30 MJ/kg in 0.2 ms, crossed the
-// pole and exploded (docs/validation.md, "The stand-in on the graded target"). So E < 0 is read as the
-// cold state E = 0 (the thermal terms vanish, dP/dE = 0); P stays continuous at E = 0. The particle keeps
-// its E (the energy budget still sums it).
+// and the particles of a light projectile stand-in ringing against a heavier target fell below -5 MJ/kg
+// within 0.2 ms, crossed the pole and exploded (docs/validation.md, "The stand-in on the graded
+// target"). So E < 0 is read as the cold state E = 0 (the thermal terms vanish, dP/dE = 0); P stays
+// continuous at E = 0. The particle keeps its E (the energy budget still sums it).
 // Precondition (the caller's; no check in the hot path): density > 0 (density <= 0 returns P = 0
 // and c = c_min).
 #include <algorithm>
