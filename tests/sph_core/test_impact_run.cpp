@@ -70,16 +70,22 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
   return rows;
 }
 
-}  // namespace
-
-TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater) {
-  const auto config = tiny_impact();
-  const auto dir = fs::temp_directory_path() / ("craterkit_tiny_impact_" + std::to_string(::getpid()));
+// A fresh output directory under the temporary directory (per process) and quiet run options for it.
+RunOptions quiet_run_in(const fs::path& dir) {
   fs::remove_all(dir);
   RunOptions options;
   options.output_directory = dir;
   options.progress = false;
   options.log = false;
+  return options;
+}
+
+}  // namespace
+
+TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater) {
+  const auto config = tiny_impact();
+  const auto dir = fs::temp_directory_path() / ("craterkit_tiny_impact_" + std::to_string(::getpid()));
+  const RunOptions options = quiet_run_in(dir);
   const auto summary = run_simulation(config, options);
   std::printf(
       "tiny impact: %llu steps to t = %.4g s in %.3g s wall, crater radius %.4g +- %.3g m, ejected %zu "
@@ -189,11 +195,7 @@ TEST(ImpactRun, TinyImpactOpensACraterWiderThanTwoSpacings) {
   auto config = tiny_impact();
   config.run.end_time = 0.8;
   const auto dir = fs::temp_directory_path() / ("craterkit_tiny_crater_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  RunOptions options;
-  options.output_directory = dir;
-  options.progress = false;
-  options.log = false;
+  const RunOptions options = quiet_run_in(dir);
   run_simulation(config, options);
   std::size_t checks = 0;
   for (const auto& row : read_csv(dir / "crater_growth.csv")) {
@@ -221,11 +223,7 @@ TEST(ImpactRun, GradedStandInGoesThroughTheContactWithItsEnergyKept) {
   config.output.snapshot_times.clear();
   config.output.checkpoint_interval_seconds = 0;
   const auto dir = fs::temp_directory_path() / ("craterkit_stand_in_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  RunOptions options;
-  options.output_directory = dir;
-  options.progress = false;
-  options.log = false;
+  const RunOptions options = quiet_run_in(dir);
   const auto summary = run_simulation(config, options);
   std::printf("graded stand-in to 0.3 ms: %llu blocks, relative energy error %.3g\n",
               static_cast<unsigned long long>(summary.steps), summary.relative_energy_error);
