@@ -1,13 +1,15 @@
 #!/usr/bin/python3
 """Plan view of an impact run with boulders: where the boulders were and went, and the crater edge.
 
-Usage: plot_impact_plan.py OUT.png RUN_DIR [--time T] [--extent X]
+Usage: plot_impact_plan.py OUT.png RUN_DIR [--time T] [--extent X] [--crater CRATER.json]
 
 Draws, seen from above, the particles of every boulder (material id >= 2) at t = 0 (light) and in the
 snapshot closest to T (default: the last one; dark), the target particles of that snapshot that lie below
 the pre-impact surface inside the crater (z < -0.25 m, light grey), and the crater of RUN_DIR/crater.json:
-the circle of `crater_radius` and the edge radius measured along +x, -x, +y and -y. Fixed and ejected
-particles are left out. Prints each boulder's displacement from crater.json.
+the circle of `crater_radius`, the edge radius measured along +x, -x, +y and -y and, where crater.json has
+it, the outline (the edge of every ray). --crater takes the crater from another file (`craterkit measure
+SNAPSHOT --out DIR` of the snapshot drawn). Fixed and ejected particles are left out. Prints each
+boulder's displacement from crater.json.
 """
 import glob
 import json
@@ -49,15 +51,18 @@ def main(argv):
         return 2
     out, run_dir = argv[1], argv[2]
     time, extent = None, 12.0
+    crater_path = os.path.join(run_dir, "crater.json")
     args = iter(argv[3:])
     for a in args:
         if a == "--time":
             time = float(next(args))
         elif a == "--extent":
             extent = float(next(args))
+        elif a == "--crater":
+            crater_path = next(args)
         else:
             raise SystemExit(f"unknown argument {a!r}")
-    with open(os.path.join(run_dir, "crater.json")) as f:
+    with open(crater_path) as f:
         crater = json.load(f)
     first, _ = read(os.path.join(run_dir, "snap_000000.h5"))
     last, t = read(snapshot_closest(run_dir, time))
@@ -76,6 +81,12 @@ def main(argv):
     r = crater["crater_radius"]
     phi = np.linspace(0.0, 2.0 * np.pi, 361)
     ax.plot(r * np.cos(phi), r * np.sin(phi), "k--", lw=1, label=f"R = {r:.2f} m")
+    if "outline" in crater:
+        azimuth = np.radians(crater["outline"]["azimuth_deg"])
+        edge = np.array([np.nan if e is None else e for e in crater["outline"]["edge_radius"]])
+        closed = np.append(np.arange(len(edge)), 0)
+        ax.plot(edge[closed] * np.cos(azimuth[closed]), edge[closed] * np.sin(azimuth[closed]), "k-", lw=1.2,
+                label="crater edge (every ray)")
     radii = crater["radii"]
     ax.plot([radii["+x"], -radii["-x"], 0.0, 0.0], [0.0, 0.0, radii["+y"], -radii["-y"]], "ko", ms=5,
             label="edge along +-x, +-y")

@@ -479,6 +479,24 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
     }
   }
   m.mean_azimuthal_radius = edge_count ? edge_sum / double(edge_count) : nan;
+  m.min_edge_radius = m.min_edge_azimuth = m.max_edge_radius = m.max_edge_azimuth = nan;
+  double harmonic_x = 0.0, harmonic_y = 0.0;
+  for (const auto& ray : m.rays) {
+    if (!std::isfinite(ray.edge_radius)) continue;
+    if (!(ray.edge_radius >= m.min_edge_radius)) {
+      m.min_edge_radius = ray.edge_radius;
+      m.min_edge_azimuth = ray.azimuth;
+    }
+    if (!(ray.edge_radius <= m.max_edge_radius)) {
+      m.max_edge_radius = ray.edge_radius;
+      m.max_edge_azimuth = ray.azimuth;
+    }
+    harmonic_x += ray.edge_radius * std::cos(ray.azimuth);
+    harmonic_y += ray.edge_radius * std::sin(ray.azimuth);
+  }
+  m.outline_centre_offset = edge_count == na && na > 0 ? std::array<double, 2>{2.0 * harmonic_x / double(na),
+                                                                               2.0 * harmonic_y / double(na)}
+                                                       : std::array<double, 2>{nan, nan};
 
   // Depth and volume inside the edge of each ray.
   double lowest = std::numeric_limits<double>::infinity();
@@ -641,6 +659,14 @@ std::string crater_json_text(const CraterMeasurement& m, double time) {
   json ejected_by_material = json::object();
   for (const auto& [material, mass] : m.ejected_mass_by_material)
     ejected_by_material[std::to_string(material)] = mass;
+  // Every ray's edge: the outline of the crater at the pre-impact level (null where a ray has none).
+  auto degrees = [](double radians) { return radians * (180.0 / std::numbers::pi); };
+  json azimuths = json::array(), edges = json::array();
+  for (const auto& ray : m.rays) {
+    azimuths.push_back(degrees(ray.azimuth));
+    edges.push_back(ray.edge_radius);
+  }
+  const json outline = {{"azimuth_deg", azimuths}, {"edge_radius", edges}};
   json boulders = json::array();
   for (const auto& b : m.boulders) {
     boulders.push_back({{"name", b.name},
@@ -658,6 +684,13 @@ std::string crater_json_text(const CraterMeasurement& m, double time) {
             {"radii", radii},
             {"directions", directions},
             {"mean_azimuthal_radius", m.mean_azimuthal_radius},
+            {"outline", outline},
+            {"asymmetry",
+             {{"min_edge_radius", m.min_edge_radius},
+              {"min_edge_azimuth_deg", degrees(m.min_edge_azimuth)},
+              {"max_edge_radius", m.max_edge_radius},
+              {"max_edge_azimuth_deg", degrees(m.max_edge_azimuth)},
+              {"centre_offset", {m.outline_centre_offset[0], m.outline_centre_offset[1]}}}},
             {"depth", m.depth},
             {"rim_height", m.rim_height},
             {"rim_radius", m.rim_radius},

@@ -371,6 +371,16 @@ TEST(CraterMeasurement, AsymmetricRimGivesTheFourRadii) {
   EXPECT_NEAR(m.radius_spread, spread, 0.1 * dx);
   EXPECT_NEAR(m.crater_radius_uncertainty,
               std::sqrt(0.25 * m.radius_spread * m.radius_spread + 0.25 * dx * dx), 1e-12);
+  // The outline over all 64 rays: longest edge e R0 beyond R0, shortest e R0 short of it, on either side of
+  // the +x axis (rays within 17 degrees of the axis differ from 1.2 R0 by less than the 0.1 dx of the
+  // edge search); the first harmonic of R(phi) = R0 (1 + e cos phi) is e R0 along +x, off by at most
+  // (2/n) sum |cos phi| 0.1 dx = (4/pi) 0.1 dx, and exactly 0 along y (mirror symmetry).
+  EXPECT_NEAR(m.max_edge_radius, R0 * (1.0 + e), 0.1 * dx);
+  EXPECT_NEAR(m.min_edge_radius, R0 * (1.0 - e), 0.1 * dx);
+  EXPECT_LT(std::abs(std::remainder(m.max_edge_azimuth, 2.0 * pi)), 0.3);
+  EXPECT_LT(std::abs(std::remainder(m.min_edge_azimuth - pi, 2.0 * pi)), 0.3);
+  EXPECT_NEAR(m.outline_centre_offset[0], e * R0, 4.0 / pi * 0.1 * dx);
+  EXPECT_NEAR(m.outline_centre_offset[1], 0.0, 1e-9);
   // The run's growth checks measure the four axis rays only (n_azimuths = 4): the same sample columns,
   // hence the same four radii and crater radius, to the bit.
   CraterMeasurementOptions axes = options();
@@ -552,6 +562,11 @@ TEST(CraterMeasurement, WritesCraterJsonAndProfileCsv) {
   EXPECT_DOUBLE_EQ(j.at("ejected_mass").get<double>(), 0.0);
   EXPECT_DOUBLE_EQ(j.at("time").get<double>(), 12.5);
   EXPECT_TRUE(j.at("boulders").is_array());
+  ASSERT_EQ(j.at("outline").at("edge_radius").size(), m.rays.size());
+  EXPECT_DOUBLE_EQ(j.at("outline").at("edge_radius")[16].get<double>(), m.rays[16].edge_radius);
+  EXPECT_DOUBLE_EQ(j.at("outline").at("azimuth_deg")[16].get<double>(), 90.0);
+  EXPECT_DOUBLE_EQ(j.at("asymmetry").at("max_edge_radius").get<double>(), m.max_edge_radius);
+  EXPECT_DOUBLE_EQ(j.at("asymmetry").at("centre_offset")[0].get<double>(), m.outline_centre_offset[0]);
   EXPECT_DOUBLE_EQ(j.at("settings").at("rho_crit").get<double>(), 0.5 * rho);
 
   std::ifstream csv(dir / "crater_profile.csv");

@@ -157,12 +157,20 @@ struct CraterMeasurement {
   double radius_spread = 0.0;              // m, sample standard deviation of the four radii
   std::array<double, 4> radii{};           // m: +x, -x, +y, -y
   double mean_azimuthal_radius = 0.0;      // m, mean edge radius over all rays with an edge
-  double depth = 0.0;                      // m, below z = 0
-  double rim_height = 0.0;                 // m, maximum of the profile outside the crater radius
-  double rim_radius = 0.0;                 // m
-  double volume = 0.0;                     // m^3, below z = 0 and inside the edge
-  double ejected_mass = 0.0;               // kg
-  std::size_t ejected_particles = 0;       // particles flagged ejected in the set (not scaled by symmetry)
+  // Shape of the edge over all rays (boulders, oblique impacts): the shortest and longest edge radius and
+  // the azimuths of their rays (rad, from +x towards +y), and the offset of the outline's centre from the
+  // impact point, the first Fourier harmonic of the edge radius ((2/n) sum R cos phi, (2/n) sum R sin phi):
+  // a circle of radius R0 whose centre is shifted by d << R0 has R(phi) = R0 + d cos(phi - phi_d) to first
+  // order. The offset is NaN when a ray has no edge; the extremes are NaN when none has.
+  double min_edge_radius = 0.0, min_edge_azimuth = 0.0;
+  double max_edge_radius = 0.0, max_edge_azimuth = 0.0;
+  std::array<double, 2> outline_centre_offset{};  // m (x, y)
+  double depth = 0.0;                             // m, below z = 0
+  double rim_height = 0.0;                        // m, maximum of the profile outside the crater radius
+  double rim_radius = 0.0;                        // m
+  double volume = 0.0;                            // m^3, below z = 0 and inside the edge
+  double ejected_mass = 0.0;                      // kg
+  std::size_t ejected_particles = 0;  // particles flagged ejected in the set (not scaled by symmetry)
   std::vector<std::pair<int, double>> ejected_mass_by_material;  // (material id, kg)
   std::vector<RayMeasurement> rays;                              // n_azimuths
   std::vector<ProfileSample> profile;
