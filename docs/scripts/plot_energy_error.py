@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Energy error against time for one or more runs, from their conservation.csv (docs/validation.md,
-"Boulders": the boulder target before and after solids advanced density and stress from the middle of
-the step).
+"Boulders": the boulder target with the engine's predictor-corrector and with the prototype that advances
+density and stress from the middle of the step).
 
 The error is (E(t) - E(0)) / E_kin(0): total energy (kinetic + internal + potential, ejecta included) against
 the impact's kinetic energy.
@@ -51,6 +51,8 @@ def main():
         if args.until is not None:
             keep = [k for k, x in enumerate(t) if x <= args.until]
             t, error = [t[k] for k in keep], [error[k] for k in keep]
+            if not t:
+                sys.exit(f"plot_energy_error: {run_dir} has no row at or before --until {args.until} s")
         ax.plot(t, error, label=f"{label} (at {t[-1]:.3g} s: {error[-1]:.2e})")
         print(f"{label}: largest |error| {max(abs(e) for e in error):.3e}, at the end ({t[-1]:.4g} s) {error[-1]:.3e}")
     ax.set_xlabel("time (s)")
