@@ -7,8 +7,9 @@
 // terms in the pair loop, Randles-Libersky corrected gradient, Jaumann rate, yield, porous pressure,
 // crush-curve return, distention rate) at the same particle and neighbour count.
 //
-//   sph_solid_bench [n_per_side ...] [--steps S] [--threads T1,T2]
+//   sph_solid_bench [n_per_side ...] [--steps S] [--threads T1,T2] [--artificial-stress EPSILON]
 //   e.g. sph_solid_bench 46 --steps 10     (about 1e5 particles)
+// --artificial-stress turns on the artificial stress (artificial_stress.hpp) in the solid problem.
 #include <omp.h>
 
 #include <time.h>
@@ -89,10 +90,11 @@ struct Measurement {
   std::string phases;
 };
 
-Measurement measure(int per_side, int threads, int steps, bool solid) {
+Measurement measure(int per_side, int threads, int steps, bool solid, double artificial_stress) {
   omp_set_num_threads(threads);
   SimulationConfig config;
   config.run.end_time = 1.0;
+  if (solid) config.artificial_stress = artificial_stress;
   Simulation sim(config, make_block(per_side, solid));
   for (int k = 0; k < 2; ++k) sim.step(config.run.end_time);  // warm-up (first allocations)
   sim.timers().reset();
@@ -120,11 +122,14 @@ Measurement measure(int per_side, int threads, int steps, bool solid) {
 int main(int argc, char** argv) {
   std::vector<int> sides;
   int steps = 10;
+  double artificial_stress = 0.0;
   std::vector<int> thread_counts = {1, 2};
   for (int k = 1; k < argc; ++k) {
     const std::string arg = argv[k];
     if (arg == "--steps" && k + 1 < argc) {
       steps = std::atoi(argv[++k]);
+    } else if (arg == "--artificial-stress" && k + 1 < argc) {
+      artificial_stress = std::atof(argv[++k]);
     } else if (arg == "--threads" && k + 1 < argc) {
       thread_counts.clear();
       std::string list = argv[++k];
@@ -139,7 +144,9 @@ int main(int argc, char** argv) {
   }
   if (sides.empty()) sides = {46};
   if (steps < 1 || thread_counts.empty()) {
-    std::fprintf(stderr, "usage: sph_solid_bench [n_per_side ...] [--steps S] [--threads 1,2]\n");
+    std::fprintf(stderr,
+                 "usage: sph_solid_bench [n_per_side ...] [--steps S] [--threads 1,2] [--artificial-stress "
+                 "EPSILON]\n");
     return 2;
   }
   std::printf(
@@ -148,8 +155,8 @@ int main(int argc, char** argv) {
       "|---|---|---|---|---|---|---|---|---|---|\n");
   for (const int n : sides) {
     for (const int t : thread_counts) {
-      const auto hydro = measure(n, t, steps, false);
-      const auto solid = measure(n, t, steps, true);
+      const auto hydro = measure(n, t, steps, false, 0.0);
+      const auto solid = measure(n, t, steps, true, artificial_stress);
       for (const auto* m : {&hydro, &solid}) {
         char ratio[64] = "1";
         if (m == &solid) {

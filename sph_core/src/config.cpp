@@ -45,9 +45,9 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     throw InputError(s.str());
   }
 
-  const std::vector<std::string> tables = {"problem", "sedov",      "sod",       "plates",    "impact",
-                                           "run",     "kernel",     "viscosity", "time_step", "neighbours",
-                                           "output",  "late_stage", "crater"};
+  const std::vector<std::string> tables = {
+      "problem",   "sedov",     "sod",        "plates", "impact",     "run",    "kernel",
+      "viscosity", "time_step", "neighbours", "output", "late_stage", "crater", "artificial_stress"};
   for (const auto& [k, node] : root) {
     const std::string name(k.str());
     bool known = false;
@@ -56,7 +56,7 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
       throw InputError(
           source + ": unknown table or key " + name +
           " (allowed: problem, sedov, sod, plates, impact, run, kernel, viscosity, time_step, neighbours, "
-          "output, late_stage, crater)");
+          "output, late_stage, crater, artificial_stress)");
     }
     if (!node.is_table()) throw InputError(source + ": " + name + " must be a table ([" + name + "])");
   }
@@ -175,6 +175,11 @@ SimulationConfig parse_simulation_config(const std::string& toml_text, const std
     v.decay_factor = s.number("decay_factor", v.decay_factor, 0.0, 10.0, true);
     v.epsilon = s.number("epsilon", v.epsilon, 0.0, 1.0, true);
     v.balsara = s.boolean("balsara", impact != nullptr);
+    s.finish();
+  }
+  {
+    TomlKeys s = section("artificial_stress");
+    c.artificial_stress = s.number("epsilon", c.artificial_stress, 0.0, 1.0);
     s.finish();
   }
   {

@@ -12,6 +12,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/checkpoint.hpp"
 #include "craterkit/sph/crater_growth.hpp"
@@ -110,6 +111,7 @@ void Simulation::configure() {
   for (const auto& m : problem_.materials) equations_of_state_.push_back(m.eos);
   rate_options_.kernel = config_.kernel;
   rate_options_.viscosity = config_.viscosity;
+  rate_options_.artificial_stress = {config_.artificial_stress, 1.0 / config_.smoothing.eta};
   rate_options_.gravity = config_.run.gravity;
   rate_options_.period = periods(problem_.box);
   rate_options_.mirror = mirror_planes(problem_.box);
@@ -118,6 +120,11 @@ void Simulation::configure() {
   for (const auto& m : problem_.materials) {
     rate_options_.solid = rate_options_.solid || m.strength.has_value();
     porous_ = porous_ || m.porosity.has_value();
+  }
+  if (rate_options_.artificial_stress.on() && !rate_options_.solid) {
+    throw InputError("artificial_stress.epsilon = " + format_number(config_.artificial_stress) +
+                     ": the artificial stress acts on solids, and no material of this problem has strength "
+                     "(set 0 or leave the key out)");
   }
   problem_.particles.set_solid_fields(rate_options_.solid || porous_);
   problem_.particles.shrink_to_fit();

@@ -7,6 +7,7 @@
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/config.hpp"
+#include "craterkit/sph/simulation.hpp"
 
 using namespace craterkit::sph;
 using craterkit::InputError;
@@ -72,6 +73,25 @@ TEST(SimulationConfig, OutOfRangeAndWrongTypesAreNamed) {
   EXPECT_NE(error_of(minimal + "[output]\nsnapshot_times = [0.1, 0.05]\n").find("output.snapshot_times"),
             std::string::npos);
   EXPECT_NE(error_of(minimal + "[run]\n").find("TOML"), std::string::npos);  // duplicate table
+}
+
+// The artificial stress: epsilon in [0, 1], off by default; a problem without a solid material refuses it
+// when the simulation is built (the materials are known only then).
+TEST(SimulationConfig, ArtificialStress) {
+  EXPECT_DOUBLE_EQ(parse_simulation_config(minimal, "t.toml").artificial_stress, 0.0);
+  EXPECT_DOUBLE_EQ(
+      parse_simulation_config(minimal + "[artificial_stress]\nepsilon = 0.3\n", "t.toml").artificial_stress,
+      0.3);
+  const auto too_big = error_of(minimal + "[artificial_stress]\nepsilon = 2\n");
+  EXPECT_NE(too_big.find("artificial_stress.epsilon"), std::string::npos);
+  EXPECT_NE(too_big.find("2"), std::string::npos);
+  const auto config = parse_simulation_config(minimal + "[artificial_stress]\nepsilon = 0.3\n", "t.toml");
+  try {
+    Simulation sim(config, build_problem(config));
+    ADD_FAILURE() << "a gas problem with artificial stress was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("artificial_stress.epsilon"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SimulationConfig, SetupTableMustMatchTheProblem) {

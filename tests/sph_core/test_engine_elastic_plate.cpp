@@ -90,6 +90,8 @@ PlateRun run_plate(int particles_across, double relative_amplitude) {
   // Morris-Monaghan switch: alpha decays to 0.1 away from compression, which halves the viscous signal
   // speed in the Courant step (and the damping of the oscillation).
   config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  if (const char* epsilon = std::getenv("CRATERKIT_PLATE_ARTIFICIAL_STRESS"))
+    config.artificial_stress = std::stod(epsilon);
   const double eta = config.smoothing.eta;
   const double T = analytic_period();
   const double end_velocity = relative_amplitude * plate_length * 2.0 * std::numbers::pi / T;
@@ -162,7 +164,8 @@ void write_record(const PlateRun& run, const std::string& name) {
 }
 
 // Resolutions 4, 6 and 8 particles across at an end amplitude of 0.1 % of L; for studies the environment
-// may set others: CRATERKIT_PLATE_RESOLUTIONS (comma-separated) and CRATERKIT_PLATE_AMPLITUDE (over L).
+// may set others: CRATERKIT_PLATE_RESOLUTIONS (comma-separated) and CRATERKIT_PLATE_AMPLITUDE (over L), and
+// CRATERKIT_PLATE_ARTIFICIAL_STRESS the epsilon of the artificial stress (artificial_stress.hpp; 0: off).
 std::vector<int> resolutions() {
   std::vector<int> out;
   if (const char* list = std::getenv("CRATERKIT_PLATE_RESOLUTIONS")) {

@@ -15,6 +15,7 @@
 //                neighbour_band (integrator.hpp), density = "continuity" | "summation"
 //                (summation_density.hpp: for gases only)
 //   [viscosity]  alpha, beta, switch = "none" | "morris_monaghan", alpha_min, decay_factor, epsilon
+//   [artificial_stress]  epsilon (0: off; Gray et al. 2001 use 0.3): solids only (artificial_stress.hpp)
 //   [time_step]  courant, acceleration_factor, density_change, energy_change, energy_floor, max_step
 //   [neighbours] skin, sort_interval (steps between curve sorts)
 //   [output]     snapshot_times = [...] (s), checkpoint_interval_steps, checkpoint_interval_seconds,
@@ -81,6 +82,7 @@ struct SimulationConfig {
   DensityMethod density = DensityMethod::continuity;
   SmoothingLengthParameters smoothing{};
   ArtificialViscosity viscosity{};
+  double artificial_stress = 0.0;  // epsilon of artificial_stress.hpp; 0: off
   TimeStepParameters time_step{};
   NeighbourParameters neighbours{};
   OutputParameters output{};

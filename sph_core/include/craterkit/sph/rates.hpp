@@ -65,6 +65,7 @@
 #include <string_view>
 #include <vector>
 
+#include "craterkit/sph/artificial_stress.hpp"
 #include "craterkit/sph/kernel.hpp"
 #include "craterkit/sph/mirror_image.hpp"
 #include "craterkit/sph/particle_selection.hpp"
@@ -104,6 +105,9 @@ struct RateOptions {
   // gradient. Reads Particles::correction_* (of the previous evaluation, or compute_correction_matrices)
   // and replaces them with this evaluation's. Off for fluids: the pair loop then carries no stress work.
   bool solid = false;
+  // Solids only: the repulsive stress of Monaghan (2000) between close neighbours in tension
+  // (artificial_stress.hpp); off unless epsilon > 0.
+  ArtificialStress artificial_stress{};
 };
 
 // CSR neighbour lists: the neighbours of i are neighbours[offsets[i] .. offsets[i+1]). Entries may
@@ -137,6 +141,9 @@ struct RateWorkspace {
   // Solids: B = sigma L / rho^2 of every particle (xx, xy, xz, yx, yy, yz, zx, zy, zz), the per-particle
   // half of the corrected stress force, computed at the start of the pass.
   std::array<std::vector<double>, 9> stress_force;
+  // Solids with RateOptions::artificial_stress on: R of every particle (xx, xy, xz, yy, yz, zz), in the
+  // units of B (Pa m^6/kg^2), computed with B.
+  std::array<std::vector<double>, 6> artificial_stress;
 };
 
 struct RateSummary {
