@@ -3,9 +3,9 @@
 // A periodic block of a linear elastic solid (Gray et al.'s plate material: rho0 = 1000 kg/m^3, E = 2 MPa,
 // nu = 0.3975; K = 3.25 MPa) held in uniform hydrostatic tension: every particle at rho = 0.995 rho0, so
 // P = K (rho/rho0 - 1) = -16 kPa everywhere, and nothing drives any motion but a small random velocity
-// (1 mm/s, 1.4e-5 of the longitudinal sound speed). The uniform state is a stable equilibrium of the
+// (1 mm/s, 1.5e-5 of the longitudinal sound speed, 65 m/s). The uniform state is a stable equilibrium of the
 // continuous equations (an elastic solid with positive moduli); in SPH, lattice neighbours attract under
-// tension and the noise grows. Measured over 1,000 steps at C = 0.1 (16 ms, 230 sound-crossing times of a
+// tension and the noise grows. Measured over 1,000 steps at C = 0.1 (16 ms, 100 sound-crossing times of a
 // spacing): without the artificial stress the kinetic energy grows 1.1e2-fold (e-folding in ~60 steps
 // from step 600 on); with epsilon = 0.3 (Gray et al.) it ends at 0.2 of its start, growing again from step
 // 600 on with an e-folding time of ~250 steps: the artificial stress slows the instability four-fold here,

@@ -11,8 +11,9 @@
 //
 //   R'_aa = -epsilon sigma'_aa / rho_i^2   if sigma'_aa > 0 (tension),   0 otherwise,
 //
-// rotated back to x, y, z. f_ij is 1 at the spacing of the lattice and falls off with distance, so the term
-// pushes apart only neighbours that came closer than their spacing. Gray et al. use epsilon = 0.3 for
+// rotated back to x, y, z. f_ij is 1 at the spacing of the lattice and grows as neighbours come closer
+// (f_ij^4 = 5e-3 at 1.5 spacings for the cubic spline with h = 1.2 dp), so the repulsion acts mostly
+// between neighbours that came closer than their spacing. Gray et al. use epsilon = 0.3 for
 // solids. The pair term has the form of the stress force (rates.hpp), so the pair forces cancel and its
 // work enters the energy equation as that of the stress: momentum and total energy are conserved.
 //
