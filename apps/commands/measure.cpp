@@ -13,8 +13,8 @@
 
 #include "command_registry.hpp"
 #include "craterkit/common/input_error.hpp"
-#include "craterkit/sph/crater_measurement.hpp"
-#include "craterkit/sph/snapshot.hpp"
+#include "craterkit/impact/crater_measurement.hpp"
+#include "craterkit/sph/io/snapshot.hpp"
 
 namespace craterkit::cli {
 namespace {

@@ -12,8 +12,8 @@
 
 #include "command_registry.hpp"
 #include "craterkit/common/input_error.hpp"
-#include "craterkit/sph/config.hpp"
-#include "craterkit/sph/simulation.hpp"
+#include "craterkit/sph/io/config.hpp"
+#include "craterkit/sph/solver/simulation.hpp"
 
 namespace craterkit::cli {
 namespace {

@@ -17,8 +17,8 @@
 #include <tuple>
 #include <vector>
 
-#include "craterkit/sph/neighbour_search.hpp"
-#include "craterkit/sph/space_filling_curve.hpp"
+#include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/particles/space_filling_curve.hpp"
 
 namespace {
 

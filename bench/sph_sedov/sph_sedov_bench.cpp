@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "craterkit/sph/simulation.hpp"
+#include "craterkit/sph/solver/simulation.hpp"
 
 using namespace craterkit::sph;
 

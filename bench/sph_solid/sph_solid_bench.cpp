@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "craterkit/sph/material.hpp"
-#include "craterkit/sph/simulation.hpp"
+#include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/solver/simulation.hpp"
 
 using namespace craterkit::sph;
 

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
-#include "craterkit/sph/conservation_log.hpp"
-#include "engine_test_helpers.hpp"
+#include "craterkit/sph/io/conservation_log.hpp"
+#include "sph_core/engine_test_helpers.hpp"
 #include "support/sedov.hpp"
 
 namespace engine_test {

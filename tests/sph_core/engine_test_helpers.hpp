@@ -6,8 +6,8 @@
 #include <string_view>
 #include <type_traits>
 
-#include "craterkit/sph/config.hpp"
-#include "craterkit/sph/simulation.hpp"
+#include "craterkit/sph/io/config.hpp"
+#include "craterkit/sph/solver/simulation.hpp"
 
 namespace engine_test {
 

@@ -21,8 +21,8 @@
 #include <numbers>
 #include <vector>
 
-#include "craterkit/sph/config.hpp"
-#include "craterkit/sph/simulation.hpp"
+#include "craterkit/sph/io/config.hpp"
+#include "craterkit/sph/solver/simulation.hpp"
 #include "sph_core/solid_test_setups.hpp"
 
 namespace granular_test {

@@ -9,8 +9,8 @@
 #include <functional>
 #include <vector>
 
-#include "craterkit/sph/material.hpp"
-#include "craterkit/sph/setups.hpp"
+#include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/run/setups.hpp"
 
 namespace solid_test {
 

@@ -6,7 +6,7 @@
 //   momentum  P - P1 = rho1 U_s u_p
 //   energy    E - E1 = (P + P1)/2 (1/rho1 - 1/rho)
 // so that u_p = sqrt((P - P1)(1/rho1 - 1/rho)) and U_s = rho u_p / (rho - rho1).
-#include "craterkit/sph/eos.hpp"
+#include "craterkit/sph/physics/eos.hpp"
 
 namespace craterkit::test_support {
 

@@ -18,8 +18,8 @@
 // For a given P, the bulk density is the root of P_m(alpha rho, E(rho))/alpha - P, which rises
 // monotonically in rho (dP_m/drho > 0 and dP_m/dE >= 0 with E rising in rho); it is bracketed from
 // rho1 (where P_m <= 0) and found by GSL Brent. For a given u_p, P is found by Brent on u_p(P).
-#include "craterkit/sph/eos.hpp"
-#include "craterkit/sph/p_alpha.hpp"
+#include "craterkit/sph/physics/eos.hpp"
+#include "craterkit/sph/physics/p_alpha.hpp"
 #include "support/hugoniot.hpp"
 
 namespace craterkit::test_support {

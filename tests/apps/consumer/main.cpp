@@ -1,7 +1,7 @@
 // A downstream project: finds the installed craterkit with find_package and links its libraries.
 #include <cmath>
 #include <craterkit/scaling/point_source.hpp>
-#include <craterkit/sph/particles.hpp>
+#include <craterkit/sph/particles/particles.hpp>
 #include <cstdio>
 
 int main() {

@@ -1,0 +1,105 @@
+#pragma once
+// Block (individual, power-of-two) time steps (physics.md section 1: "small or fast particles then do
+// not hold the whole system to their step"), as in GADGET-2 (Springel 2005, section 4) and Phantom
+// (Price et al. 2018, section 2.3.4), on the KDK integrator of integrator.hpp.
+//
+// A block of length B is one synchronised step of the whole system: every particle starts a step at
+// its beginning and ends one at its end. Inside it, particle i takes steps B / 2^l_i (its level l_i),
+// with l_i the smallest level whose step does not exceed its own limit Particles::time_step
+// (time_step.hpp). Time inside the block is counted in integer ticks, 2^F per block for the finest
+// level F in use, so that step ends coincide exactly. At every tick where some particle's step ends:
+//   every moving particle drifts to that tick along its own step's extrapolation (drift()),
+//   the particles whose step ends there ("active") get their rates from the predicted state of all
+//   particles, are corrected with their own step and start a new one, at a new level.
+// Level changes (Saitoh & Makino 2009, ApJ 697, L99, section 2, for the neighbour rule):
+//   - finer at the end of any step (a step ending at tick t is aligned to every finer level);
+//   - coarser by one level at most, and only where the new, longer step is aligned (t a multiple of it);
+//   - never more than two levels coarser than any neighbour, so that a neighbour's step is at most four
+//     times shorter. At the start of a block the rule is applied to all particles until it holds; inside
+//     a block it is applied to each particle when its step ends, and a neighbour in the middle of a step
+//     that the rule forbids is woken: its step is cut short at the next tick aligned to the allowed
+//     level, and it continues at that level (Saitoh & Makino 2009: without waking, a blast wave reaches
+//     cold gas that is still in a long step).
+// The block length is the longest particle step, at most 2^max_levels times the shortest one and at
+// most max_step; at max_levels = 0 the block is the global step and every particle has level 0, which
+// is exactly the global scheme. Inside a block a particle may go finer than max_levels (a limit that
+// fell during the block is always honoured); more than 50 levels is a collapsed time step.
+//
+// Conservation: pair forces are evaluated at the same time for both particles only when both are active,
+// so momentum and energy are conserved to the integration error, not to round-off as with a global step.
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/particles/particles.hpp"
+
+namespace craterkit::sph {
+
+constexpr int block_finest_level_limit = 50;
+
+// Thrown when a particle's step needs more than block_finest_level_limit halvings of the block: `particle`
+// is its index, so that the caller can say which particle and which limit (Simulation does).
+struct TimeStepCollapse : std::runtime_error {
+  TimeStepCollapse(const std::string& what, std::size_t particle_index)
+      : std::runtime_error(what), particle(particle_index) {}
+  std::size_t particle;
+};
+// A particle is at most this many levels coarser than any neighbour (its step at most 2^this longer).
+inline constexpr int block_neighbour_levels = 1;
+
+// The smallest level l >= 0 with block / 2^l <= step (0 when step >= block).
+[[nodiscard]] int block_level(double block, double step);
+
+class BlockSchedule {
+ public:
+  // Starts a block of length `block` for the moving (neither fixed nor ejected) particles among the
+  // first `count` (the lists' particles; the rest, ejected, never take part) from their own steps,
+  // then raises levels until no particle is more than two levels coarser than a neighbour. Throws
+  // TimeStepCollapse if a level above block_finest_level_limit is needed (so does relevel()).
+  void start(double block, std::span<const double> time_step, std::span<const std::uint8_t> flags,
+             std::size_t count, const NeighbourLists& lists);
+
+  [[nodiscard]] bool finished() const { return tick_ == ticks_per_block(); }
+  // Advances to the next tick at which some step ends; returns the time from the previous tick, s.
+  double advance();
+  // The particles whose step ends at the current tick, in index order.
+  [[nodiscard]] std::span<const std::uint32_t> active() const { return active_; }
+  // The step length of particle i at its current level, s.
+  [[nodiscard]] double step_of(std::size_t i) const;
+  // Per-particle lengths of the steps that end now (indexed by particle, valid for the active ones; a
+  // woken particle's is shorter than its level's), for correct().
+  [[nodiscard]] std::span<const double> active_steps() const { return active_steps_; }
+  // New levels for the active particles, whose steps just ended, from their new limits; they start
+  // their next step at the current tick.
+  void relevel(std::span<const double> time_step, const NeighbourLists& lists);
+
+  [[nodiscard]] double block() const { return block_; }
+  // Time from the start of the block to the current tick, s.
+  [[nodiscard]] double elapsed() const {
+    return block_ * static_cast<double>(tick_) / static_cast<double>(ticks_per_block());
+  }
+  [[nodiscard]] int finest_level() const { return finest_; }
+  [[nodiscard]] std::uint64_t ticks_per_block() const { return std::uint64_t{1} << finest_; }
+  // Number of particles at each level at the start of the block (for the log).
+  [[nodiscard]] const std::vector<std::size_t>& level_counts() const { return level_counts_; }
+
+ private:
+  void refine_to(int level);  // rescales the ticks so that `level` exists
+  [[nodiscard]] int neighbour_floor(std::size_t i, const NeighbourLists& lists) const;
+
+  double block_ = 0.0;
+  int finest_ = 0;
+  std::uint64_t tick_ = 0;
+  std::vector<std::uint8_t> level_;        // per particle; only moving particles are scheduled
+  std::vector<std::uint64_t> start_tick_;  // per particle: tick at which its current step started
+  std::vector<std::uint64_t> end_tick_;    // per particle: tick at which its current step ends
+  std::vector<std::uint8_t> scheduled_;    // per particle: moving and in the lists
+  std::vector<std::uint32_t> active_;      // particles whose step ends at tick_
+  std::vector<double> active_steps_;       // per particle: the step of an active particle, s
+  std::vector<std::size_t> level_counts_;
+};
+
+}  // namespace craterkit::sph

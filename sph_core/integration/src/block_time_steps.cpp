@@ -1,0 +1,187 @@
+#include "craterkit/sph/integration/block_time_steps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "craterkit/sph/particles/mirror_image.hpp"
+
+namespace craterkit::sph {
+
+int block_level(double block, double step) {
+  if (std::isnan(step)) return block_finest_level_limit + 1;  // a NaN step is no step: an error
+  if (!(step < block)) return 0;                              // also +infinity
+  if (!(step > 0.0)) return block_finest_level_limit + 1;
+  int level = static_cast<int>(std::ceil(std::log2(block / step)));
+  level = std::max(level, 0);
+  // log2 may round either way: settle on the smallest level whose step is within the limit.
+  while (level > 0 && std::ldexp(block, -(level - 1)) <= step) --level;
+  while (std::ldexp(block, -level) > step && level <= block_finest_level_limit) ++level;
+  return level;
+}
+
+namespace {
+
+[[noreturn]] void throw_collapse(double block, double step, std::size_t particle) {
+  char text[160];
+  std::snprintf(
+      text, sizeof text,
+      "time step collapsed: a particle's step %.3g s needs more than %d halvings of the block of %.3g s",
+      step, block_finest_level_limit, block);
+  throw TimeStepCollapse(text, particle);
+}
+
+}  // namespace
+
+int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists) const {
+  int highest = 0;
+  for (const std::uint32_t entry : lists.of(i)) {
+    const std::size_t j = neighbour_index(entry);  // a mirror image has its source's level
+    if (scheduled_[j] != 0) highest = std::max(highest, int(level_[j]));
+  }
+  return highest - block_neighbour_levels;
+}
+
+void BlockSchedule::start(double block, std::span<const double> time_step,
+                          std::span<const std::uint8_t> flags, std::size_t count,
+                          const NeighbourLists& lists) {
+  block_ = block;
+  level_.assign(count, 0);
+  end_tick_.assign(count, 0);
+  start_tick_.assign(count, 0);
+  scheduled_.assign(count, 0);
+  active_steps_.assign(count, 0.0);
+  active_.clear();
+  const auto n = static_cast<std::int64_t>(count);
+  int bad = -1;
+#pragma omp parallel for schedule(static) reduction(max : bad)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if ((flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
+    scheduled_[i] = 1;
+    const int level = block_level(block, time_step[i]);
+    if (level > block_finest_level_limit) bad = std::max(bad, int(i));
+    level_[i] = static_cast<std::uint8_t>(std::min(level, block_finest_level_limit));
+  }
+  if (bad >= 0) throw_collapse(block, time_step[std::size_t(bad)], std::size_t(bad));
+  // Neighbour rule: sweeps (each reading the levels of the sweep before, so the result does not
+  // depend on the thread count) until no particle is more than two levels coarser than a neighbour.
+  std::vector<std::uint8_t> raised(count);
+  for (bool changed = true; changed;) {
+    changed = false;
+#pragma omp parallel for schedule(dynamic, 256) reduction(|| : changed)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      raised[i] = level_[i];
+      if (scheduled_[i] == 0) continue;
+      const int floor = neighbour_floor(i, lists);
+      if (floor > int(level_[i])) {
+        raised[i] = static_cast<std::uint8_t>(floor);
+        changed = true;
+      }
+    }
+    level_.swap(raised);
+  }
+  finest_ = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (scheduled_[i] != 0) finest_ = std::max(finest_, int(level_[i]));
+  }
+  level_counts_.assign(std::size_t(finest_) + 1, 0);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (scheduled_[i] == 0) continue;
+    ++level_counts_[level_[i]];
+    start_tick_[i] = 0;
+    end_tick_[i] = std::uint64_t{1} << (finest_ - level_[i]);
+  }
+  tick_ = 0;
+}
+
+double BlockSchedule::advance() {
+  const auto n = static_cast<std::int64_t>(level_.size());
+  std::uint64_t next = ticks_per_block();
+#pragma omp parallel for schedule(static) reduction(min : next)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (scheduled_[i] != 0) next = std::min(next, end_tick_[i]);
+  }
+  active_.clear();
+  for (std::size_t i = 0; i < level_.size(); ++i) {
+    if (scheduled_[i] != 0 && end_tick_[i] == next) {
+      active_.push_back(static_cast<std::uint32_t>(i));
+      // The step that ends here: 2^(F - level) ticks, or fewer when it was cut short by a neighbour.
+      active_steps_[i] = std::ldexp(block_ * static_cast<double>(end_tick_[i] - start_tick_[i]), -finest_);
+    }
+  }
+  const double dt = std::ldexp(block_ * static_cast<double>(next - tick_), -finest_);
+  tick_ = next;
+  return dt;
+}
+
+double BlockSchedule::step_of(std::size_t i) const {
+  return std::ldexp(block_, -int(level_[i]));
+}
+
+void BlockSchedule::refine_to(int level) {
+  if (level <= finest_) return;
+  const int shift = level - finest_;
+  for (std::size_t i = 0; i < end_tick_.size(); ++i) {
+    end_tick_[i] <<= shift;
+    start_tick_[i] <<= shift;
+  }
+  tick_ <<= shift;
+  finest_ = level;
+}
+
+void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLists& lists) {
+  const auto n = static_cast<std::int64_t>(active_.size());
+  std::vector<std::uint8_t> wanted(active_.size());  // per substep; small next to the pair pass
+  int highest = 0, bad = -1;
+#pragma omp parallel for schedule(static) reduction(max : highest, bad)
+  for (std::int64_t kk = 0; kk < n; ++kk) {
+    const auto k = static_cast<std::size_t>(kk);
+    const std::size_t i = active_[k];
+    const int current = level_[i];
+    int want = std::max(block_level(block_, time_step[i]), neighbour_floor(i, lists));
+    if (want > block_finest_level_limit) bad = std::max(bad, int(i));
+    want = std::min(want, block_finest_level_limit);
+    int level = current;
+    if (want > current) {
+      level = want;  // always aligned: the step that just ended was
+    } else if (want < current) {
+      const int coarser = current - 1;  // one level at a time, where the longer step is aligned
+      const std::uint64_t coarser_ticks = std::uint64_t{1} << (finest_ - coarser);
+      if (tick_ % coarser_ticks == 0 && tick_ < ticks_per_block()) level = coarser;
+    }
+    wanted[k] = static_cast<std::uint8_t>(level);
+    highest = std::max(highest, level);
+  }
+  if (bad >= 0) throw_collapse(block_, time_step[std::size_t(bad)], std::size_t(bad));
+  refine_to(highest);
+  for (std::size_t k = 0; k < active_.size(); ++k) {
+    const std::size_t i = active_[k];
+    level_[i] = wanted[k];
+    start_tick_[i] = tick_;
+    end_tick_[i] = tick_ + (std::uint64_t{1} << (finest_ - level_[i]));
+  }
+  // Waking (Saitoh & Makino 2009): a neighbour in the middle of a step more than two levels coarser than
+  // an active particle's new level has its step cut short at the next tick aligned to the level two
+  // coarser than that, and continues at that level. Serial: few particles are woken, and several active
+  // particles may wake the same neighbour.
+  for (const std::uint32_t i : active_) {
+    const int floor = int(level_[i]) - block_neighbour_levels;
+    if (floor <= 0) continue;
+    for (const std::uint32_t entry : lists.of(i)) {
+      const std::size_t j = neighbour_index(entry);
+      if (scheduled_[j] == 0 || int(level_[j]) >= floor || end_tick_[j] <= tick_) continue;
+      const std::uint64_t step = std::uint64_t{1} << (finest_ - floor);
+      const std::uint64_t end = (tick_ / step + 1) * step;
+      if (end < end_tick_[j]) end_tick_[j] = end;
+      level_[j] = static_cast<std::uint8_t>(floor);
+    }
+  }
+}
+
+}  // namespace craterkit::sph

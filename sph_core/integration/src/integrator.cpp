@@ -1,0 +1,185 @@
+#include "craterkit/sph/integration/integrator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace craterkit::sph {
+
+namespace {
+
+inline bool moves(std::uint8_t flags) {
+  return (flags & (particle_fixed | particle_ejected)) == 0;
+}
+
+inline double smoothing_length_of(double mass, double density, const SmoothingLengthParameters& s) {
+  const double h = s.eta * std::cbrt(mass / density);
+  return std::clamp(h, s.min_smoothing_length, s.max_smoothing_length);
+}
+
+// h clamped to [h_min, h_max] and to max_smoothing_ratio times eta (m/rho)^(1/3).
+inline double clamped_smoothing_length(double h, double mass, double density,
+                                       const SmoothingLengthParameters& s) {
+  if (s.max_smoothing_ratio < std::numeric_limits<double>::infinity()) {
+    h = std::min(h, s.max_smoothing_ratio * s.eta * std::cbrt(mass / density));
+  }
+  return std::clamp(h, s.min_smoothing_length, s.max_smoothing_length);
+}
+
+template <class StepOf>
+void correct_selected(Particles& p, StepOf step_of, const ParticleSelection& selection,
+                      const IntegratorWorkspace& w, std::span<const std::uint32_t> neighbour_count,
+                      const SmoothingLengthParameters& smoothing, bool integrate_density) {
+  const auto n = static_cast<std::int64_t>(selection.size());
+  const double eta2 = 2.0 * smoothing.eta;
+  const double target = 4.0 / 3.0 * 3.14159265358979323846 * eta2 * eta2 * eta2;
+  const double low = target * (1.0 - smoothing.neighbour_band),
+               high = target * (1.0 + smoothing.neighbour_band);
+  const bool solid = p.solid_fields;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = selection.at(static_cast<std::size_t>(ii));
+    if (!moves(p.flags[i])) continue;
+    const double half = 0.5 * step_of(i);
+    p.vx[i] += half * (p.acceleration_x[i] - w.acceleration_x[i]);
+    p.vy[i] += half * (p.acceleration_y[i] - w.acceleration_y[i]);
+    p.vz[i] += half * (p.acceleration_z[i] - w.acceleration_z[i]);
+    const double density = p.density[i];
+    if (integrate_density) p.density[i] += half * (p.density_rate[i] - w.density_rate[i]);
+    p.specific_energy[i] += half * (p.energy_rate[i] - w.energy_rate[i]);
+    p.viscosity_alpha[i] += half * (p.viscosity_alpha_rate[i] - w.viscosity_alpha_rate[i]);
+    if (solid) {
+      p.stress_xx[i] += half * (p.stress_rate_xx[i] - w.stress_rate_xx[i]);
+      p.stress_xy[i] += half * (p.stress_rate_xy[i] - w.stress_rate_xy[i]);
+      p.stress_xz[i] += half * (p.stress_rate_xz[i] - w.stress_rate_xz[i]);
+      p.stress_yy[i] += half * (p.stress_rate_yy[i] - w.stress_rate_yy[i]);
+      p.stress_yz[i] += half * (p.stress_rate_yz[i] - w.stress_rate_yz[i]);
+      p.total_strain[i] += half * (p.total_strain_rate[i] - w.total_strain_rate[i]);
+      // alpha^{n+1} = alpha^n + dt/2 (r^n + r^{n+1}) <= alpha^n (both rates <= 0), from the stored alpha^n
+      // rather than from alpha*: the per-particle phase may have returned alpha* to the crush curve to
+      // evaluate the predicted pressure, and adding dt/2 (r^{n+1} - r^n) to a returned alpha* would count
+      // the step's compaction twice. The clamp makes "never re-expands" exact also after rounding.
+      p.distention[i] = std::clamp(w.distention[i] + half * (w.distention_rate[i] + p.distention_rate[i]),
+                                   1.0, w.distention[i]);
+    }
+    double factor = std::cbrt(density / p.density[i]);
+    const double count = neighbour_count[i];
+    if (count < low || count > high) {
+      factor *= std::clamp(0.5 * (1.0 + std::cbrt(target / std::max(count, 1.0))), 0.8, 1.25);
+    }
+    p.smoothing_length[i] =
+        clamped_smoothing_length(p.smoothing_length[i] * factor, p.mass[i], p.density[i], smoothing);
+  }
+}
+
+}  // namespace
+
+void update_smoothing_length(Particles& p, const SmoothingLengthParameters& smoothing) {
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if ((p.flags[i] & particle_fixed) != 0) continue;
+    p.smoothing_length[i] = smoothing_length_of(p.mass[i], p.density[i], smoothing);
+  }
+}
+
+void begin_step(const Particles& p, IntegratorWorkspace& w, const ParticleSelection& selection) {
+  const std::size_t count = p.size();
+  w.acceleration_x.resize(count);
+  w.acceleration_y.resize(count);
+  w.acceleration_z.resize(count);
+  w.density_rate.resize(count);
+  w.energy_rate.resize(count);
+  w.viscosity_alpha_rate.resize(count);
+  const bool solid = p.solid_fields;
+  const std::size_t solid_count = solid ? count : 0;
+  w.stress_rate_xx.resize(solid_count);
+  w.stress_rate_xy.resize(solid_count);
+  w.stress_rate_xz.resize(solid_count);
+  w.stress_rate_yy.resize(solid_count);
+  w.stress_rate_yz.resize(solid_count);
+  w.total_strain_rate.resize(solid_count);
+  w.distention_rate.resize(solid_count);
+  w.distention.resize(solid_count);
+  const auto n = static_cast<std::int64_t>(selection.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = selection.at(static_cast<std::size_t>(ii));
+    w.acceleration_x[i] = p.acceleration_x[i];
+    w.acceleration_y[i] = p.acceleration_y[i];
+    w.acceleration_z[i] = p.acceleration_z[i];
+    w.density_rate[i] = p.density_rate[i];
+    w.energy_rate[i] = p.energy_rate[i];
+    w.viscosity_alpha_rate[i] = p.viscosity_alpha_rate[i];
+    if (solid) {
+      w.stress_rate_xx[i] = p.stress_rate_xx[i];
+      w.stress_rate_xy[i] = p.stress_rate_xy[i];
+      w.stress_rate_xz[i] = p.stress_rate_xz[i];
+      w.stress_rate_yy[i] = p.stress_rate_yy[i];
+      w.stress_rate_yz[i] = p.stress_rate_yz[i];
+      w.total_strain_rate[i] = p.total_strain_rate[i];
+      w.distention_rate[i] = p.distention_rate[i];
+      w.distention[i] = p.distention[i];
+    }
+  }
+}
+
+void drift(Particles& p, double dt, const Box& box, const SmoothingLengthParameters& smoothing) {
+  const auto n = static_cast<std::int64_t>(p.size());
+  const bool solid = p.solid_fields;
+  const double half = 0.5 * dt;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    if (!moves(p.flags[i])) continue;
+    const double ax = p.acceleration_x[i], ay = p.acceleration_y[i], az = p.acceleration_z[i];
+    p.x[i] = wrap_position(box, 0, p.x[i] + dt * (p.vx[i] + half * ax));
+    p.y[i] = wrap_position(box, 1, p.y[i] + dt * (p.vy[i] + half * ay));
+    p.z[i] = wrap_position(box, 2, p.z[i] + dt * (p.vz[i] + half * az));
+    p.vx[i] += dt * ax;
+    p.vy[i] += dt * ay;
+    p.vz[i] += dt * az;
+    const double density = p.density[i];
+    p.density[i] += dt * p.density_rate[i];
+    p.specific_energy[i] += dt * p.energy_rate[i];
+    p.viscosity_alpha[i] += dt * p.viscosity_alpha_rate[i];
+    if (solid) {
+      p.stress_xx[i] += dt * p.stress_rate_xx[i];
+      p.stress_xy[i] += dt * p.stress_rate_xy[i];
+      p.stress_xz[i] += dt * p.stress_rate_xz[i];
+      p.stress_yy[i] += dt * p.stress_rate_yy[i];
+      p.stress_yz[i] += dt * p.stress_rate_yz[i];
+      p.total_strain[i] += dt * p.total_strain_rate[i];
+      // dalpha/dt <= 0 (compaction is irreversible); alpha >= 1 (no matrix denser than its law).
+      p.distention[i] = std::max(1.0, p.distention[i] + dt * p.distention_rate[i]);
+    }
+    p.smoothing_length[i] = clamped_smoothing_length(p.smoothing_length[i] * std::cbrt(density / p.density[i]),
+                                                     p.mass[i], p.density[i], smoothing);
+  }
+}
+
+void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
+             const SmoothingLengthParameters& smoothing) {
+  begin_step(p, w, ParticleSelection::all(p.size()));
+  drift(p, dt, box, smoothing);
+}
+
+void correct(Particles& p, double dt, const IntegratorWorkspace& w,
+             std::span<const std::uint32_t> neighbour_count, const SmoothingLengthParameters& smoothing,
+             bool integrate_density) {
+  correct_selected(
+      p, [dt](std::size_t) { return dt; }, ParticleSelection::all(p.size()), w, neighbour_count, smoothing,
+      integrate_density);
+}
+
+void correct(Particles& p, std::span<const double> step_of_particle, const ParticleSelection& selection,
+             const IntegratorWorkspace& w, std::span<const std::uint32_t> neighbour_count,
+             const SmoothingLengthParameters& smoothing, bool integrate_density) {
+  correct_selected(
+      p, [step_of_particle](std::size_t i) { return step_of_particle[i]; }, selection, w, neighbour_count,
+      smoothing, integrate_density);
+}
+
+}  // namespace craterkit::sph

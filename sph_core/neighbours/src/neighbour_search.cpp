@@ -1,0 +1,743 @@
+#include "craterkit/sph/neighbours/neighbour_search.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "craterkit/sph/particles/space_filling_curve.hpp"
+
+namespace craterkit::sph {
+
+namespace {
+
+// Candidates are tested in blocks of this many particles (the size of the stack array of test results;
+// the default octree leaf fits in one). Finer blocks of 8 with their own bounding boxes cut the distance
+// tests by a quarter but cost more in mispredicted box tests: measured slower (RESULTS_neighbours.md).
+constexpr std::uint32_t block_size = 64;
+
+// Gap between the intervals [a0, a1] and [b0, b1] (0 when they overlap), along a periodic axis of
+// length `edge` also between their images one edge apart. Called three times per (particle, candidate
+// box) pair: forced inline and written with two-argument max/min, which compile to single instructions
+// (the initializer-list forms did not inline and cost 11 % of a Sedov step, bench/RESULTS.md).
+template <bool Periodic>
+[[gnu::always_inline]] inline double interval_gap(double a0, double a1, double b0, double b1,
+                                                  bool periodic_axis, double edge) {
+  double gap = std::max(0.0, std::max(b0 - a1, a0 - b1));
+  if constexpr (Periodic) {
+    if (periodic_axis && gap > 0) {
+      const double above = std::max(0.0, std::max(b0 + edge - a1, a0 - b1 - edge));
+      const double below = std::max(0.0, std::max(b0 - edge - a1, a0 - b1 + edge));
+      gap = std::min(gap, std::min(above, below));
+    }
+  }
+  return gap;
+}
+
+// Resizes a build buffer to `size` without letting std::vector double its capacity (resize alone would:
+// with mirror images the buffers first hold the n particles, then n plus the images). `slack` extra
+// capacity absorbs the small changes of the image count between builds without reallocating each time.
+template <class T>
+void resize_buffer(std::vector<T>& v, std::size_t size, std::size_t slack) {
+  if (v.capacity() < size) v.reserve(size + slack);
+  v.resize(size);
+}
+
+}  // namespace
+
+NeighbourSearch::NeighbourSearch(NeighbourSearchOptions options) : options_(options) {
+  if (!(options_.skin >= 0.0) || !std::isfinite(options_.skin)) {
+    throw std::invalid_argument("neighbour search: skin must be finite and >= 0, got " +
+                                std::to_string(options_.skin));
+  }
+  if (options_.leaf_size < 1 || options_.leaf_size > 4096) {
+    throw std::invalid_argument("neighbour search: leaf_size must be in [1, 4096], got " +
+                                std::to_string(options_.leaf_size));
+  }
+}
+
+std::size_t NeighbourSearch::workspace_bytes() const {
+  std::size_t bytes =
+      keyed_.capacity() * sizeof(keyed_[0]) +
+      (xs_.capacity() + ys_.capacity() + zs_.capacity() + hs_.capacity()) * sizeof(double) +
+      original_.capacity() * sizeof(std::uint32_t) + groups_.capacity() * sizeof(Group) +
+      nodes_.capacity() * sizeof(Node) +
+      (rank_.capacity() + group_of_.capacity() + candidates_.capacity()) * sizeof(std::uint32_t) +
+      candidate_offsets_.capacity() * sizeof(std::uint64_t) +
+      image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity() +
+      (motion_used_.capacity() + motion_budget_.capacity()) * sizeof(double) + query_mark_.capacity() +
+      group_has_query_.capacity();
+  for (const auto& t : scratch_)
+    bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
+  return bytes;
+}
+
+void NeighbourSearch::release_workspace() {
+  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(keyed_);
+  release(groups_);
+  release(nodes_);
+  release(rank_);
+  release(group_of_);
+  release(candidate_offsets_);
+  release(candidates_);
+  release(scratch_);
+  release(group_queried_);
+  release(near_planes_);
+  release(image_start_);
+  release(group_has_query_);
+}
+
+void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
+  const std::size_t n = in.x.size();
+  if (in.y.size() != n || in.z.size() != n || in.smoothing_length.size() != n) {
+    throw std::invalid_argument("neighbour search: x, y, z and smoothing_length must have the same length");
+  }
+  if (n > max_search_particles) {
+    throw std::invalid_argument("neighbour search: " + std::to_string(n) +
+                                " particles, more than 2^29 (list entries keep 3 bits for mirror images)");
+  }
+  for (int a = 0; a < 3; ++a) {
+    if (box.periodic[a] && !(box.edge(a) > 0 && std::isfinite(box.edge(a)))) {
+      throw std::invalid_argument("neighbour search: periodic axis " + std::to_string(a) +
+                                  " needs upper > lower, got edge " + std::to_string(box.edge(a)));
+    }
+    if (box.mirror[a] && box.periodic[a]) {
+      throw std::invalid_argument("neighbour search: axis " + std::to_string(a) +
+                                  " cannot be both periodic and mirrored");
+    }
+    if (box.mirror[a] && !std::isfinite(box.lower[a])) {
+      throw std::invalid_argument("neighbour search: the mirror plane of axis " + std::to_string(a) +
+                                  " (lower = " + std::to_string(box.lower[a]) + ") must be finite");
+    }
+  }
+  particles_ = n;
+  xs_.resize(n);
+  ys_.resize(n);
+  zs_.resize(n);
+  keyed_.resize(n);
+
+  // Wrapped positions (periodic axes) into the sorted-copy arrays, unsorted for now; h_max and validity.
+  double h_max = 0.0;
+  double h_min = std::numeric_limits<double>::infinity();
+  bool h_valid = true;
+#pragma omp parallel for schedule(static) reduction(max : h_max) reduction(min : h_min) reduction(&& : h_valid)
+  for (std::size_t i = 0; i < n; ++i) {
+    xs_[i] = wrap_position(box, 0, in.x[i]);
+    ys_[i] = wrap_position(box, 1, in.y[i]);
+    zs_[i] = wrap_position(box, 2, in.z[i]);
+    keyed_[i].second = static_cast<std::uint32_t>(i);  // the list entry of a particle: its index
+    const double h = in.smoothing_length[i];
+    h_max = std::max(h_max, h);
+    h_min = std::min(h_min, h);
+    h_valid = h_valid && h > 0 && std::isfinite(h);  // also false for NaN, which min/max ignore
+  }
+  if (!h_valid) {
+    throw std::invalid_argument("neighbour search: smoothing lengths must be finite and > 0 (min " +
+                                std::to_string(h_min) + ", max " + std::to_string(h_max) + ")");
+  }
+  const double reach = 2.0 * h_max * (1.0 + options_.skin);  // largest pair distance in the lists
+  for (int a = 0; a < 3; ++a) {
+    if (box.periodic[a] && !(box.edge(a) > 2.0 * reach)) {
+      throw std::invalid_argument("neighbour search: periodic box edge along axis " + std::to_string(a) +
+                                  " (" + std::to_string(box.edge(a)) +
+                                  ") must exceed 2 (1 + skin) (h_i + h_j) = " + std::to_string(2.0 * reach));
+    }
+  }
+  if (box.any_mirror()) add_mirror_images(in, box, h_max);  // appended after the n particles
+  const std::size_t entries = xs_.size();
+  const std::size_t slack = (entries - n) / 4;  // 0 without mirrors
+  resize_buffer(hs_, entries, slack);
+  resize_buffer(original_, entries, slack);
+  const CurveCube cube = bounding_cube(xs_, ys_, zs_);  // also rejects non-finite positions
+
+  // The keys of curve_order(): particles sorted by the engine are found sorted and not re-sorted (without
+  // mirrors; with mirrors the images change the cube and the order is sorted afresh).
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < entries; ++k) keyed_[k].first = morton_key(cube, xs_[k], ys_[k], zs_[k]);
+  sort_keyed_indices(keyed_);
+
+  // Sorted copies, recomputed from the input in sorted order (no scratch array needed); images reflected
+  // exactly as the pair loops reflect them (MirrorImage::position), so both see the same distances.
+  const MirrorPlanes planes = mirror_planes(box);
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < entries; ++k) {
+    const std::uint32_t entry = keyed_[k].second;
+    const MirrorImage image = mirror_image(entry);
+    const std::size_t i = image.index;
+    original_[k] = entry;
+    xs_[k] = image.position(0, planes, wrap_position(box, 0, in.x[i]));
+    ys_[k] = image.position(1, planes, wrap_position(box, 1, in.y[i]));
+    zs_[k] = image.position(2, planes, wrap_position(box, 2, in.z[i]));
+    hs_[k] = in.smoothing_length[i];
+  }
+}
+
+// Which particles get images: i within reach of the plane of mirrored axis a, i.e. x_a - L_a <
+// (1 + s)(h_i + h_max) + beyond_a, where beyond_a >= 0 is how far the deepest particle has crossed that
+// plane (normally 0: particles stay on their side). Exact: for j not imaged along a and any particle i,
+// the image distance along a is |(x_i - L) + (x_j - L)| >= -beyond_a + (1 + s)(h_j + h_max) + beyond_a
+// >= (1 + s)(h_i + h_j), so the pair (i, image of j) is not within reach; a corner image needs both of
+// its axes within reach. The band is widened by a relative 1e-12 so that the rounding of 2 L - x_j
+// cannot drop a pair at the very edge of the reach. Each particle gets one image per nonempty subset of
+// its near axes (x, y and the corner xy for a quarter domain), written after the n particles in index
+// order (deterministic).
+void NeighbourSearch::add_mirror_images(const NeighbourInput& in, const Box& box, double h_max) {
+  const std::size_t n = particles_;
+  const double grow = 1.0 + options_.skin;
+  const std::array<bool, 3> mirror = box.mirror;
+  const std::array<double, 3> plane = box.lower;
+  double beyond_x = 0.0, beyond_y = 0.0, beyond_z = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : beyond_x, beyond_y, beyond_z)
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mirror[0]) beyond_x = std::max(beyond_x, plane[0] - xs_[i]);
+    if (mirror[1]) beyond_y = std::max(beyond_y, plane[1] - ys_[i]);
+    if (mirror[2]) beyond_z = std::max(beyond_z, plane[2] - zs_[i]);
+  }
+  near_planes_.resize(n);
+  image_start_.resize(n + 1);
+  image_start_[0] = 0;
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const double reach = grow * (in.smoothing_length[i] + h_max) * (1.0 + 1e-12);
+    unsigned near = 0;
+    if (mirror[0] && xs_[i] - plane[0] < reach + beyond_x) near |= 1u;
+    if (mirror[1] && ys_[i] - plane[1] < reach + beyond_y) near |= 2u;
+    if (mirror[2] && zs_[i] - plane[2] < reach + beyond_z) near |= 4u;
+    near_planes_[i] = static_cast<std::uint8_t>(near);
+    image_start_[i + 1] = (1u << std::popcount(near)) - 1;  // nonempty subsets of `near`
+  }
+  for (std::size_t i = 0; i < n; ++i) image_start_[i + 1] += image_start_[i];
+  const std::uint64_t entries = std::uint64_t{n} + image_start_[n];
+  if (entries >= std::numeric_limits<std::uint32_t>::max()) {
+    throw std::invalid_argument("neighbour search: " + std::to_string(entries) +
+                                " particles and mirror images, more than 2^32-2");
+  }
+  const std::size_t slack = image_start_[n] / 4;
+  resize_buffer(xs_, entries, slack);
+  resize_buffer(ys_, entries, slack);
+  resize_buffer(zs_, entries, slack);
+  resize_buffer(keyed_, entries, slack);
+  const MirrorPlanes planes = mirror_planes(box);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned near = near_planes_[i];
+    std::size_t at = n + image_start_[i];
+    for (unsigned bits = 1; bits < 8; ++bits) {
+      if ((bits & ~near) != 0) continue;
+      const MirrorImage image{i, bits};
+      xs_[at] = image.position(0, planes, xs_[i]);
+      ys_[at] = image.position(1, planes, ys_[i]);
+      zs_[at] = image.position(2, planes, zs_[i]);
+      keyed_[at].second = neighbour_entry(static_cast<std::uint32_t>(i), bits);
+      ++at;
+    }
+  }
+}
+
+void NeighbourSearch::split_at_median(std::uint32_t begin, std::uint32_t end) {
+  std::array<double, 3> lower{xs_[begin], ys_[begin], zs_[begin]}, upper = lower;
+  for (std::uint32_t k = begin; k < end; ++k) {
+    lower = {std::min(lower[0], xs_[k]), std::min(lower[1], ys_[k]), std::min(lower[2], zs_[k])};
+    upper = {std::max(upper[0], xs_[k]), std::max(upper[1], ys_[k]), std::max(upper[2], zs_[k])};
+  }
+  int axis = 0;
+  for (int a = 1; a < 3; ++a) {
+    if (upper[a] - lower[a] > upper[axis] - lower[axis]) axis = a;
+  }
+  const std::vector<double>& coordinate = axis == 0 ? xs_ : (axis == 1 ? ys_ : zs_);
+  std::vector<std::uint32_t> order(end - begin);  // rare path: a temporary is fine
+  for (std::uint32_t k = begin; k < end; ++k) order[k - begin] = k;
+  // Ties broken by index so the split is deterministic.
+  std::nth_element(order.begin(), order.begin() + std::ptrdiff_t(order.size() / 2), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) {
+                     return coordinate[a] < coordinate[b] || (coordinate[a] == coordinate[b] && a < b);
+                   });
+  // Apply the permutation to every sorted array (keys are all equal in this range).
+  const auto apply = [&](auto& values) {
+    auto copy = std::vector<typename std::decay_t<decltype(values)>::value_type>(order.size());
+    for (std::size_t m = 0; m < order.size(); ++m) copy[m] = values[order[m]];
+    std::copy(copy.begin(), copy.end(), values.begin() + begin);
+  };
+  apply(keyed_);
+  apply(xs_);
+  apply(ys_);
+  apply(zs_);
+  apply(hs_);
+  apply(original_);
+}
+
+void NeighbourSearch::make_octree() {
+  const std::size_t n = keyed_.size();
+  groups_.clear();
+  nodes_.clear();
+  group_queried_.clear();
+  if (n == 0) return;
+  const std::size_t leaf_size = options_.leaf_size;
+  // Depth-first construction over the sorted keys: a node of level L holds keys sharing their top 3L bits.
+  // Chains of single-child levels are collapsed (the node keeps its range and descends a level).
+  struct Frame {
+    std::uint32_t begin, end;
+    int level;
+  };
+  const auto build = [&](auto&& self, Frame f) -> std::uint32_t {
+    const auto index = std::uint32_t(nodes_.size());
+    nodes_.push_back({});
+    int level = f.level;
+    const auto digit = [&](std::uint32_t k, int lvl) {
+      return int(keyed_[k].first >> (3 * (morton_bits_per_axis - 1 - lvl)) & 7);
+    };
+    while (f.end - f.begin > leaf_size && level < morton_bits_per_axis &&
+           digit(f.begin, level) == digit(f.end - 1, level)) {
+      ++level;
+    }
+    Node node{};
+    if (f.end - f.begin <= leaf_size) {
+      const auto g = std::uint32_t(groups_.size());
+      Group group{{xs_[f.begin], ys_[f.begin], zs_[f.begin]},
+                  {xs_[f.begin], ys_[f.begin], zs_[f.begin]},
+                  0.0,
+                  f.begin,
+                  f.end};
+      bool queried = false;
+      for (std::uint32_t k = f.begin; k < f.end; ++k) {
+        group.lower = {std::min(group.lower[0], xs_[k]), std::min(group.lower[1], ys_[k]),
+                       std::min(group.lower[2], zs_[k])};
+        group.upper = {std::max(group.upper[0], xs_[k]), std::max(group.upper[1], ys_[k]),
+                       std::max(group.upper[2], zs_[k])};
+        group.h_max = std::max(group.h_max, hs_[k]);
+        queried = queried || mirror_bits(original_[k]) == 0;
+      }
+      groups_.push_back(group);
+      group_queried_.push_back(queried ? 1 : 0);
+      node = {group.lower, group.upper, group.h_max, 0, std::int32_t(g)};
+    } else {
+      constexpr double inf = std::numeric_limits<double>::infinity();
+      node = {{inf, inf, inf}, {-inf, -inf, -inf}, 0.0, 0, -1};
+      const auto add_child = [&](std::uint32_t b, std::uint32_t e, int child_level) {
+        const std::uint32_t child = self(self, Frame{b, e, child_level});
+        const Node& c = nodes_[child];
+        for (int a = 0; a < 3; ++a) {
+          node.lower[a] = std::min(node.lower[a], c.lower[a]);
+          node.upper[a] = std::max(node.upper[a], c.upper[a]);
+        }
+        node.h_max = std::max(node.h_max, c.h_max);
+      };
+      if (level >= morton_bits_per_axis) {
+        // More than leaf_size particles share one finest Morton cell: the bounding cube is over 2^21
+        // times the particle spacing (e.g. a few particles thrown very far). Split at the median of the
+        // longest axis instead (k-d), so that such a cell still costs O(n log n), not O(n^2).
+        split_at_median(f.begin, f.end);
+        const std::uint32_t middle = f.begin + (f.end - f.begin) / 2;
+        add_child(f.begin, middle, level);
+        add_child(middle, f.end, level);
+      } else {
+        for (std::uint32_t b = f.begin; b < f.end;) {
+          const int d = digit(b, level);
+          // End of this child's run: first key with a larger digit at this level.
+          const auto it =
+              std::partition_point(keyed_.begin() + b, keyed_.begin() + f.end, [&](const auto& item) {
+                return int(item.first >> (3 * (morton_bits_per_axis - 1 - level)) & 7) <= d;
+              });
+          const auto e = std::uint32_t(it - keyed_.begin());
+          add_child(b, e, level + 1);
+          b = e;
+        }
+      }
+    }
+    node.skip = std::uint32_t(nodes_.size());
+    nodes_[index] = node;
+    return index;
+  };
+  build(build, Frame{0, std::uint32_t(n), 0});
+}
+
+template <bool Periodic>
+void NeighbourSearch::candidates_octree(std::size_t g, const Box& box, std::vector<std::uint32_t>& out,
+                                        double grow) const {
+  const Group& group = groups_[g];
+  const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
+  const std::size_t count = nodes_.size();
+  for (std::size_t i = 0; i < count;) {
+    const Node& node = nodes_[i];
+    double d2 = 0;
+    for (int a = 0; a < 3; ++a) {
+      const double gap = interval_gap<Periodic>(group.lower[a], group.upper[a], node.lower[a], node.upper[a],
+                                                box.periodic[a], edge[a]);
+      d2 += gap * gap;
+    }
+    const double reach = grow * (group.h_max + node.h_max);
+    if (d2 < reach * reach) {
+      if (node.group >= 0) out.push_back(std::uint32_t(node.group));
+      ++i;
+    } else {
+      i = node.skip;
+    }
+  }
+}
+
+template <bool Periodic>
+void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, double grow,
+                                    const std::uint8_t* query_mark) {
+  const std::size_t n = particles_;        // lists for the real particles only
+  const std::size_t entries = xs_.size();  // particles and mirror images in the tree
+  const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const std::array<double, 3> half{box.periodic[0] ? 0.5 * edge[0] : inf,
+                                   box.periodic[1] ? 0.5 * edge[1] : inf,
+                                   box.periodic[2] ? 0.5 * edge[2] : inf};
+  rank_.resize(n);
+  resize_buffer(group_of_, entries, (entries - n) / 4);
+  const double* xs = xs_.data();
+  const double* ys = ys_.data();
+  const double* zs = zs_.data();
+  const double* hs = hs_.data();
+#pragma omp parallel
+  {
+#pragma omp for schedule(static) nowait
+    for (std::size_t k = 0; k < entries; ++k) {
+      if (mirror_bits(original_[k]) == 0) rank_[original_[k]] = std::uint32_t(k);
+    }
+#pragma omp for schedule(static)
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      for (std::uint32_t k = groups_[g].begin; k < groups_[g].end; ++k) group_of_[k] = std::uint32_t(g);
+    }
+  }
+  if (scratch_.size() < std::size_t(omp_get_max_threads()))
+    scratch_.resize(std::size_t(omp_get_max_threads()));
+  // With a query mark only the groups holding a queried particle need candidates.
+  const std::size_t group_count = groups_.size();
+  if (query_mark != nullptr) {
+    group_has_query_.assign(group_count, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (query_mark[i] != 0) group_has_query_[group_of_[rank_[i]]] = 1;
+    }
+  }
+
+  // Candidate groups of every group, counted then stored (finding them twice is cheap next to the pairs).
+  const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
+    out.clear();
+    const bool queried = group_queried_[g] != 0 && (query_mark == nullptr || group_has_query_[g] != 0);
+    if (queried) candidates_octree<Periodic>(g, box, out, grow);  // images alone are never queried
+  };
+  candidate_offsets_.resize(group_count + 1);
+  candidate_offsets_[0] = 0;
+#pragma omp parallel
+  {
+    ThreadScratch& t = scratch_[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t g = 0; g < group_count; ++g) {
+      find_candidates(g, t.candidates);
+      candidate_offsets_[g + 1] = t.candidates.size();
+    }
+#pragma omp single
+    {
+      for (std::size_t g = 0; g < group_count; ++g) candidate_offsets_[g + 1] += candidate_offsets_[g];
+      candidates_.resize(candidate_offsets_[group_count]);
+    }
+#pragma omp for schedule(dynamic, 64)
+    for (std::size_t g = 0; g < group_count; ++g) {
+      find_candidates(g, t.candidates);
+      std::copy(t.candidates.begin(), t.candidates.end(),
+                candidates_.begin() + std::ptrdiff_t(candidate_offsets_[g]));
+    }
+  }
+
+  // Neighbours of sorted particle k written to out[0..]; returns their number, or `room` + 1 when they
+  // might not fit in `room` entries (the test writes every candidate before deciding whether to keep it).
+  // Only the identical entry is dropped: a particle near a mirror plane keeps its own image.
+  const auto gather = [&](std::uint32_t k, std::uint32_t* out, std::size_t room) -> std::size_t {
+    if (query_mark != nullptr && query_mark[original_[k]] == 0) return 0;  // (k is a real particle)
+    const std::uint32_t g = group_of_[k];
+    const double xi = xs[k], yi = ys[k], zi = zs[k], hi = hs[k];
+    std::size_t used = 0;
+    for (std::uint64_t c = candidate_offsets_[g]; c < candidate_offsets_[g + 1]; ++c) {
+      const Group& o = groups_[candidates_[c]];
+      // Point-to-box distance: skip the whole candidate when even its largest h cannot reach i.
+      const double gx = interval_gap<Periodic>(xi, xi, o.lower[0], o.upper[0], box.periodic[0], edge[0]);
+      const double gy = interval_gap<Periodic>(yi, yi, o.lower[1], o.upper[1], box.periodic[1], edge[1]);
+      const double gz = interval_gap<Periodic>(zi, zi, o.lower[2], o.upper[2], box.periodic[2], edge[2]);
+      const double box_reach = grow * (hi + o.h_max);
+      if (gx * gx + gy * gy + gz * gz >= box_reach * box_reach) continue;
+      if (used + (o.end - o.begin) > room) return room + 1;
+      for (std::uint32_t block = o.begin; block < o.end; block += block_size) {
+        const std::uint32_t length = std::min(o.end - block, block_size);
+        const double* __restrict bx = xs + block;
+        const double* __restrict by = ys + block;
+        const double* __restrict bz = zs + block;
+        const double* __restrict bh = hs + block;
+        // Two steps: the distance tests (vectorised, no branches), then a branch-free compaction (the
+        // test is unpredictable: about 1 in 3 candidates is a neighbour). margin > 0 exactly when
+        // r^2 < reach^2 (IEEE subtraction of unequal finite numbers is nonzero).
+        std::array<double, block_size> margin;
+        for (std::uint32_t m = 0; m < length; ++m) {
+          double dx = xi - bx[m], dy = yi - by[m], dz = zi - bz[m];
+          if constexpr (Periodic) {  // minimum image, branch-free (half = infinity on open axes)
+            dx = dx > half[0] ? dx - edge[0] : (dx < -half[0] ? dx + edge[0] : dx);
+            dy = dy > half[1] ? dy - edge[1] : (dy < -half[1] ? dy + edge[1] : dy);
+            dz = dz > half[2] ? dz - edge[2] : (dz < -half[2] ? dz + edge[2] : dz);
+          }
+          const double reach = grow * (hi + bh[m]);
+          margin[m] = reach * reach - (dx * dx + dy * dy + dz * dz);
+        }
+        for (std::uint32_t m = 0; m < length; ++m) {
+          out[used] = original_[block + m];
+          used += std::size_t(margin[m] > 0) & std::size_t(block + m != k);
+        }
+      }
+    }
+    return used;
+  };
+  // The same into a growable vector from position `at`.
+  const auto gather_into = [&](std::uint32_t k, std::vector<std::uint32_t>& v, std::size_t at) {
+    for (;;) {
+      const std::size_t room = v.size() - at;
+      const std::size_t count = gather(k, v.data() + at, room);
+      if (count <= room) return count;
+      v.resize(std::max(v.size() + v.size() / 2, at + 2 * room) + 1024);  // geometric growth
+    }
+  };
+
+  // Lists are written in the caller's particle order straight into lists.neighbours: thread t owns a
+  // contiguous range of particles and a region of the array sized from a sample (every 16th particle's
+  // count, plus 3 % and a margin); one move closes the gaps between the regions afterwards. A thread
+  // that fills its region continues in its own overflow vector (rare: the merge then copies once).
+  // Three barriers per build in all, so that shared cores (where each barrier may cost a scheduler time
+  // slice) do not slow the build; about 3 % slack in the lists is the only extra memory.
+  constexpr std::size_t sample_stride = 16;
+  lists.offsets.resize(n + 1);
+  lists.offsets[0] = 0;
+  bool overflowed = false;
+#pragma omp parallel
+  {
+    const auto threads = std::size_t(omp_get_num_threads());
+    const auto id = std::size_t(omp_get_thread_num());
+    ThreadScratch& t = scratch_[id];
+    const std::size_t first = n * id / threads, last = n * (id + 1) / threads;
+    std::size_t sampled = 0, samples = 0;
+    for (std::size_t i = first; i < last; i += sample_stride, ++samples) {
+      sampled += gather_into(rank_[i], t.found, 0);
+    }
+    t.region_size =
+        samples ? std::size_t(1.03 * double(sampled) * double(last - first) / double(samples)) : 0;
+    if (last > first) t.region_size += 4096;  // margin for small ranges and sampling noise
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t start = 0;
+      for (std::size_t u = 0; u < threads; ++u) {
+        scratch_[u].region_start = start;
+        start += scratch_[u].region_size;
+      }
+      if (lists.neighbours.size() < start) {
+        // reserve first: resize alone would let std::vector double its capacity (2x the lists' memory)
+        if (lists.neighbours.capacity() < start) lists.neighbours.reserve(start);
+        lists.neighbours.resize(start);
+      }
+    }
+    // implicit barrier: regions are laid out
+    std::uint32_t* region = lists.neighbours.data() + t.region_start;
+    std::size_t used = 0;
+    t.overflow_from = last;
+    t.used = 0;  // entries in the overflow vector
+    for (std::size_t i = first; i < last; ++i) {
+      const std::uint32_t k = rank_[i];
+      std::size_t count =
+          t.overflow_from == last ? gather(k, region + used, t.region_size - used) : t.region_size + 1;
+      if (count <= t.region_size - used) {
+        used += count;
+      } else {
+        if (t.overflow_from == last) t.overflow_from = i;
+        count = gather_into(k, t.found, t.used);
+        t.used += count;
+      }
+      lists.offsets[i + 1] = count;  // the count for now
+    }
+    t.region_used = used;
+#pragma omp atomic update
+    overflowed |= t.overflow_from != last;
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t base = 0;
+      for (std::size_t u = 0; u < threads; ++u) {
+        scratch_[u].final_start = base;
+        base += scratch_[u].region_used + scratch_[u].used;
+      }
+      if (!overflowed) {
+        // Close the gaps: every region moves down (final_start <= region_start when nothing overflowed),
+        // in ascending order so that no data is overwritten before it is moved.
+        for (std::size_t u = 1; u < threads; ++u) {
+          const ThreadScratch& r = scratch_[u];
+          if (r.region_used == 0) continue;  // (the array may be empty: no null pointer to memmove)
+          std::memmove(lists.neighbours.data() + r.final_start, lists.neighbours.data() + r.region_start,
+                       r.region_used * sizeof(std::uint32_t));
+        }
+      } else {
+        std::vector<std::uint32_t> merged(base);
+        for (std::size_t u = 0; u < threads; ++u) {
+          const ThreadScratch& r = scratch_[u];
+          auto out = std::copy_n(lists.neighbours.data() + r.region_start, r.region_used,
+                                 merged.data() + r.final_start);
+          std::copy_n(r.found.data(), r.used, out);
+        }
+        lists.neighbours.swap(merged);
+      }
+      lists.neighbours.resize(base);  // shrinking keeps the capacity for the next build
+    }
+    // implicit barrier; offsets: prefix sums over each thread's range from its final start
+    std::uint64_t offset = t.final_start;
+    for (std::size_t i = first; i < last; ++i) {
+      offset += lists.offsets[i + 1];
+      lists.offsets[i + 1] = offset;
+    }
+  }
+}
+
+void NeighbourSearch::build(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {
+  built_ = false;
+  sort_particles(input, box);
+  make_octree();
+  if (refitting_) reset_motion_budget();
+  const double grow = 1.0 + options_.skin;
+  if (box.any_periodic()) {
+    collect_pairs<true>(box, lists, grow, nullptr);
+  } else {
+    collect_pairs<false>(box, lists, grow, nullptr);
+  }
+  box_ = box;
+  built_ = true;
+}
+
+void NeighbourSearch::reset_motion_budget() {
+  const std::size_t entries = xs_.size();
+  resize_buffer(motion_used_, entries, (entries - particles_) / 4);
+  resize_buffer(motion_budget_, entries, (entries - particles_) / 4);
+  const double skin = options_.skin;
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < entries; ++k) {
+    motion_used_[k] = 0.0;
+    motion_budget_[k] = skin * hs_[k];
+  }
+}
+
+bool NeighbourSearch::refit(const NeighbourInput& input, const Box& box) {
+  const std::size_t entries = xs_.size();
+  const MirrorPlanes planes = mirror_planes(box);
+  bool stale = false;
+#pragma omp parallel for schedule(static) reduction(|| : stale)
+  for (std::size_t k = 0; k < entries; ++k) {
+    const MirrorImage image = mirror_image(original_[k]);
+    const std::size_t i = image.index;
+    const double x = image.position(0, planes, wrap_position(box, 0, input.x[i]));
+    const double y = image.position(1, planes, wrap_position(box, 1, input.y[i]));
+    const double z = image.position(2, planes, wrap_position(box, 2, input.z[i]));
+    const double h = input.smoothing_length[i];
+    if (image.bits == 0) {
+      // The motion since the last refit, summed: an upper bound of the motion since the build (the
+      // criterion of needs_rebuild, which decides whether the images and the grouping still hold).
+      const auto d = displacement(box, x, y, z, xs_[k], ys_[k], zs_[k]);
+      motion_used_[k] += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + std::max(0.0, h - hs_[k]);
+      if (!(motion_used_[k] <= motion_budget_[k])) stale = true;
+    }
+    xs_[k] = x;
+    ys_[k] = y;
+    zs_[k] = z;
+    hs_[k] = h;
+  }
+  if (stale) return false;
+    // Tight boxes of the groups, then of the nodes, children before parents (depth-first order: a node's
+    // children follow it, so visiting the nodes backwards reaches every child first).
+#pragma omp parallel for schedule(static)
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    Group& group = groups_[g];
+    group.lower = group.upper = {xs_[group.begin], ys_[group.begin], zs_[group.begin]};
+    group.h_max = 0.0;
+    for (std::uint32_t k = group.begin; k < group.end; ++k) {
+      group.lower = {std::min(group.lower[0], xs_[k]), std::min(group.lower[1], ys_[k]),
+                     std::min(group.lower[2], zs_[k])};
+      group.upper = {std::max(group.upper[0], xs_[k]), std::max(group.upper[1], ys_[k]),
+                     std::max(group.upper[2], zs_[k])};
+      group.h_max = std::max(group.h_max, hs_[k]);
+    }
+  }
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t k = nodes_.size(); k-- > 0;) {
+    Node& node = nodes_[k];
+    if (node.group >= 0) {
+      const Group& group = groups_[std::size_t(node.group)];
+      node.lower = group.lower;
+      node.upper = group.upper;
+      node.h_max = group.h_max;
+      continue;
+    }
+    node.lower = {inf, inf, inf};
+    node.upper = {-inf, -inf, -inf};
+    node.h_max = 0.0;
+    for (std::size_t c = k + 1; c < node.skip; c = nodes_[c].skip) {
+      for (int a = 0; a < 3; ++a) {
+        node.lower[a] = std::min(node.lower[a], nodes_[c].lower[a]);
+        node.upper[a] = std::max(node.upper[a], nodes_[c].upper[a]);
+      }
+      node.h_max = std::max(node.h_max, nodes_[c].h_max);
+    }
+  }
+  return true;
+}
+
+void NeighbourSearch::build_for(const NeighbourInput& input, const Box& box,
+                                std::span<const std::uint32_t> queries, NeighbourLists& lists,
+                                bool restructure) {
+  refitting_ = true;
+  const std::size_t n = input.x.size();
+  const bool same_layout = built_ && !nodes_.empty() && n == particles_ && input.y.size() == n &&
+                           input.z.size() == n && input.smoothing_length.size() == n &&
+                           box.periodic == box_.periodic && box.mirror == box_.mirror &&
+                           box.lower == box_.lower && box.upper == box_.upper;
+  if (restructure || !same_layout || !refit(input, box)) {
+    built_ = false;
+    sort_particles(input, box);
+    make_octree();
+    reset_motion_budget();
+    box_ = box;
+    built_ = true;
+    ++restructures_;
+  }
+  query_mark_.assign(n, 0);
+  for (const std::uint32_t i : queries) query_mark_[i] = 1;
+  if (box.any_periodic()) {
+    collect_pairs<true>(box, lists, 1.0, query_mark_.data());
+  } else {
+    collect_pairs<false>(box, lists, 1.0, query_mark_.data());
+  }
+}
+
+bool NeighbourSearch::needs_rebuild(const NeighbourInput& input) const {
+  const std::size_t n = particles_;
+  if (!built_ || input.x.size() != n || input.y.size() != n || input.z.size() != n ||
+      input.smoothing_length.size() != n) {
+    return true;
+  }
+  const double skin = options_.skin;
+  const std::size_t entries = xs_.size();
+  bool moved_too_far = false;
+  // The real particles only: an image moves exactly as its source does (header).
+#pragma omp parallel for schedule(static) reduction(|| : moved_too_far)
+  for (std::size_t k = 0; k < entries; ++k) {
+    if (mirror_bits(original_[k]) != 0) continue;
+    const std::uint32_t i = original_[k];
+    const auto d = displacement(box_, input.x[i], input.y[i], input.z[i], xs_[k], ys_[k], zs_[k]);
+    const double moved = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double grown = std::max(0.0, input.smoothing_length[i] - hs_[k]);
+    // Written as !(<=) so that a NaN position or h asks for a rebuild (which then reports it).
+    if (!(moved + grown <= skin * hs_[k])) moved_too_far = true;
+  }
+  return moved_too_far;
+}
+
+}  // namespace craterkit::sph

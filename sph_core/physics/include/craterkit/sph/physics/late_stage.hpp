@@ -1,0 +1,56 @@
+#pragma once
+// Late-stage transition to a low-sound-speed medium (Raducan et al. 2022; physics.md section 3).
+// At t_transition every material's matrix equation of state is replaced by the energy-free linear law
+// P_m = A_low (rho_m/rho_m0 - 1) (low_sound_speed.hpp) with the same reference density rho_m0, and its
+// shear modulus is scaled by the same factor A_low/A (A the bulk modulus of the law it replaces), which
+// keeps Poisson's ratio. Sound speeds and the shear part of the signal speed scale by sqrt(A_low/A), so
+// the time step grows by sqrt(A/A_low).
+//
+// What is kept (docs/materials.md, "Late-stage transition"):
+//  - [strength] unchanged: cohesion, friction and limiting strength are properties of the granular
+//    material, not of the wave speed.
+//  - [porosity]: the crush curve is unchanged and keeps working with the linear matrix law
+//    (distention_rate() gets dP_m/drho_m = A_low/rho_m0, dP_m/dE = 0); both sound speeds of the
+//    porous interpolation (c_e and c_s) are scaled by sqrt(A_low/A), so h(alpha) and the reduced shear
+//    modulus rule are the same functions of alpha as before. In practice the bulk pressure of the slow
+//    late-stage flow stays far below the elastic limit P_e (for the nominal target P_e/A_low ~ 37 at
+//    A_low = 0.027 MPa), so the distention is frozen after the switch: compaction happens in the shock.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/io/snapshot.hpp"
+
+namespace craterkit::sph {
+
+// The material after the switch. Throws craterkit::InputError when A_low is not > 0 or the material has
+// no bulk modulus to scale from (an ideal gas), naming the material.
+Material late_stage_material(const Material& material, double A_low);
+
+// The whole material table (index = material id), switched.
+std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low);
+
+// The largest Mach number |v|/c over the particles, and where (the solver logs it at the switch and
+// during the late stage: the low-sound-speed medium must stay nearly incompressible for its flow).
+// Particles flagged particle_ejected are skipped (they are out of the hydrodynamics); flags may be empty
+// (all particles count). A moving particle with c = 0 has an infinite Mach number. Zero particles: 0.
+struct MachNumber {
+  double value = 0.0;
+  std::size_t particle = 0;  // index of the particle where it is reached
+};
+MachNumber max_mach_number(std::span<const double> vx, std::span<const double> vy, std::span<const double> vz,
+                           std::span<const double> sound_speed, std::span<const std::uint8_t> flags = {});
+
+// Records the switch in the snapshot metadata (RunAttributes): numbers "late_stage_transition_time" (s),
+// "late_stage_A_low" (Pa), "late_stage_max_mach_at_transition", and texts "late_stage" (what the
+// switch did). Snapshots written before the switch carry none of these.
+struct LateStageRecord {
+  double transition_time;         // s
+  double A_low;                   // Pa
+  double max_mach_at_transition;  // max |v|/c just after the switch
+};
+void record_late_stage(RunAttributes& attributes, const LateStageRecord& record);
+
+}  // namespace craterkit::sph

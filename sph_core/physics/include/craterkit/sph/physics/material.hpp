@@ -1,0 +1,52 @@
+#pragma once
+// Materials: an equation of state, the elastic shear modulus, and optionally a strength model and the
+// P-alpha porosity model, read from data/materials/<name>.toml (schema and stated rules in
+// docs/materials.md). Every value is SI. The per-particle evaluation of a material (porous pressure and
+// sound speed, reduced shear modulus, yield strength) is in material_response.hpp; the switch to the
+// late-stage low-sound-speed medium in late_stage.hpp.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "craterkit/sph/physics/eos.hpp"
+#include "craterkit/sph/physics/p_alpha.hpp"
+#include "craterkit/sph/physics/yield_strength.hpp"
+
+namespace craterkit::sph {
+
+// Yield model (physics.md section 2): pressure-dependent Lundborg for the target and boulders,
+// constant von Mises for the projectile.
+using StrengthModel = std::variant<LundborgStrength, VonMisesStrength>;
+
+// P-alpha porosity (Herrmann 1969; Jutzi et al. 2008): the crush curve, plus the two sound speeds
+// between which the elastic sound speed of the porous material is interpolated linearly in alpha
+// (Jutzi et al. 2008; rule in material_response.hpp).
+struct PAlphaPorosity {
+  PAlphaParameters crush_curve;
+  double porous_sound_speed = 0.0;  // c_e: bulk sound speed of the cold, unloaded material at alpha0, m/s
+  double matrix_sound_speed = 0.0;  // c_s: of the matrix law at its reference state, sqrt(A/rho0), m/s
+                                    // (derived from [eos] by the loader, not read from the file)
+};
+
+struct Material {
+  std::string name;                        // file stem, e.g. "basalt"
+  std::string citation;                    // where the parameters come from
+  EquationOfState eos;                     // of the matrix when the material is porous
+  double shear_modulus;                    // G, Pa (0 for a fluid); of the matrix when the material is porous
+  std::string description;                 // material in words (optional in the file)
+  std::optional<StrengthModel> strength;   // none: no deviatoric stress (a fluid)
+  std::optional<PAlphaPorosity> porosity;  // none: non-porous (distention 1)
+};
+
+// name_or_path: a shipped material name ("basalt" -> <data>/materials/basalt.toml), or the path of any
+// material TOML file (anything containing a '/' or ending in ".toml"). Throws craterkit::InputError for
+// an unknown name (listing the shipped ones), a missing or unparsable file, an unknown key, a missing
+// key, or an out-of-range value, naming the file and the key.
+Material load_material(const std::string& name_or_path);
+
+// Names of the shipped materials (stems of <data>/materials/*.toml), sorted.
+std::vector<std::string> material_names();
+
+}  // namespace craterkit::sph

@@ -1,0 +1,67 @@
+#pragma once
+// Solid mechanics per particle (physics.md section 2, "Strength"), the two halves around the pair pass:
+//  - update_material_state(): before the pair pass, for runs with at least one [strength] or
+//    [porosity] material (the solid group must be allocated).
+//    Bulk pressure (with the strength model's floor), the longitudinal signal speed
+//    c_L = sqrt(c^2 + 4/3 G/rho) (physics.md section 1) in Particles::sound_speed, so that the Courant
+//    step and the viscosity see the fastest elastic wave, the shear modulus G, and the radial return of
+//    the deviatoric stress onto the yield surface of the current state (deviatoric_stress.hpp). Calling
+//    it after each update of the stress (predict and correct) is the "radial return after each step".
+//  - compute_stress_rates(): after the pair pass, the Jaumann rate dS/dt of Hooke's law with the
+//    Randles-Libersky corrected velocity gradient, and the rate of the accumulated strain
+//    sqrt(eps_dot':eps_dot'/2), stored in Particles for the integrator.
+//  - compute_distention_rates(): after the pair pass, the P-alpha distention rate dalpha/dt of
+//    Jutzi et al. (2008) (p_alpha.hpp) from the pair pass's drho/dt and du/dt at the same state.
+// Porous materials (physics.md section 2, "Porosity"; rules in material_response.hpp):
+//  - update_material_state() evaluates P = P_m(alpha rho, E)/alpha and G(alpha) = G_m h^2/alpha, and puts
+//    a state left above the crush curve back on it (return_to_crush_curve), the P-alpha analogue of the
+//    radial return, after each update of alpha (predict and correct).
+//  - Below P_e and on unloading alpha is frozen (physics.md), so the pressure responds with the matrix
+//    sound speed c_m: the signal speed for the time step and the viscosity is
+//    c_L = sqrt(c_m^2 + 4/3 G(alpha)/rho), the fastest wave the porous material carries (the compaction
+//    wave on the crush curve is slower). The reduced bulk sound speed h(alpha) c_m of Jutzi's elastic
+//    branch is not used by the solver: it belongs to a reversible elastic dalpha/dP, which physics.md
+//    excludes (alpha never increases).
+//  - The stress S is the bulk deviatoric stress, evolved with the reduced G(alpha); it is not divided
+//    by alpha again in the momentum equation.
+// Each function works on the selected particles only (all of them with a global time step, those whose
+// step ends now with block time steps) and leaves the others untouched.
+#include <span>
+#include <vector>
+
+#include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/particles/particles.hpp"
+#include "craterkit/sph/rates/rates.hpp"
+
+namespace craterkit::sph {
+
+// materials[m] is material id m. Fills pressure, sound_speed (c_L), workspace.inverse_density and
+// volume like update_pressure(), and shear_modulus[i] (resized); applies the radial return to the
+// stress of every particle and the return to the crush curve to the distention of porous ones. Throws
+// std::out_of_range for a material id without a material.
+void update_material_state(Particles& particles, std::span<const Material> materials,
+                           RateWorkspace& workspace, std::vector<double>& shear_modulus,
+                           const ParticleSelection& selection);
+
+// dS/dt and d(total strain)/dt of every active particle from the corrected gradient of the last rate
+// pass (zero for fixed and ejected particles, and no strain accumulates where G = 0).
+void compute_stress_rates(Particles& particles, const VelocityGradients& gradients,
+                          std::span<const double> shear_modulus, const ParticleSelection& selection);
+
+// After the corrector: a porous particle whose distention fell in the step below the crush-curve value of
+// its new state (the distention that puts the state reached from alpha^n = distention_before on the
+// curve, return_to_crush_curve) is raised to it. Why: the trapezoidal alpha^n + dt/2 (r^n + r^{n+1})
+// carries the rate of the step before, so where compaction stops within a step (the back of a shock
+// front, the turn from loading to unloading) it compacts up to dt/2 |r^n| too far, an error the model
+// can never undo (alpha only decreases). The bound is the backward-Euler (return-mapping) solution of the
+// crush-curve constraint; in smooth compaction the trapezoid meets it to O(dt^2).
+void limit_compaction(Particles& particles, std::span<const Material> materials,
+                      std::span<const double> distention_before, const ParticleSelection& selection);
+
+// dalpha/dt (Particles::distention_rate) of every active porous particle from its current state and the
+// drho/dt and du/dt of the last rate pass; zero for non-porous, fixed and ejected particles.
+// Requires the solid group (Particles::solid_fields) and pressure from update_material_state().
+void compute_distention_rates(Particles& particles, std::span<const Material> materials,
+                              const ParticleSelection& selection);
+
+}  // namespace craterkit::sph

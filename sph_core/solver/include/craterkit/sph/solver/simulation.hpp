@@ -1,0 +1,251 @@
+#pragma once
+// The simulation driver: one step is a short sequence of phases, each a free function over the
+// particle set and each timed (architecture.md):
+//
+//   sort along the space-filling curve (every sort_interval steps)
+//   -> predict (kick, drift, predicted state; integrator.hpp)
+//   -> neighbours (rebuilt when the skin no longer covers the motion, after a sort or checkpoint)
+//   -> equation of state per particle -> rates (pair pass) [-> stress rates] -> correct
+//   -> equation of state -> next time step
+//
+// Solid mechanics is on when any material has a [strength] block: the equation-of-state phase then
+// evaluates the full material (floor, longitudinal signal speed, shear modulus, radial return) and the
+// stress rates follow the pair pass (stress_rates.hpp). With a [porosity] material (with or without
+// strength) the same per-particle phase evaluates the porous pressure and returns states to the crush
+// curve, and the distention rate follows the pair pass. Fluid-only runs take the fluid path unchanged.
+//
+// Late-stage transition (late_stage.hpp, physics.md section 3): when the problem plans one, the step
+// that would pass t_transition is shortened to end on it; after that step every material switches to the
+// low-sound-speed law, the equation of state and the rates are evaluated again with the new laws (so the
+// integrator's stored rates belong to the switched medium), and the time step follows the new sound speeds.
+// What each particle carries across the switch (carry_stress_across_switch()): its velocity, its lithostatic
+// pressure and the wave energy of the rest of its stress. The lithostatic part P_s = clamp(P, 0, rho g d)
+// (d the depth below the pre-impact surface z = 0, g the downward gravity) is kept: the density is
+// re-referenced so that the new law returns it, rho = rho_m0 (1 + alpha P / A_low) / alpha. Without this a
+// target at rest would suddenly carry its load with a medium A/A_low times softer and sag
+// (docs/validation.md, "Lithostatic rest"); the density of continuity-SPH is a state variable, so this moves
+// no particle and changes no mass or energy. The dynamic rest P - P_s and the deviatoric stress S are the
+// stresses of the shock stage's waves: their elastic energy per volume, P^2/(2K) and S:S/(4G), is kept, so
+// both are scaled by sqrt(A_low/A) (K and G both scale by A_low/A; a plane wave's stress is its impedance
+// times its particle velocity, and the impedance scales by the same factor). Keeping them unscaled would
+// multiply that energy by A/A_low (1e6 for the SCI target): measured on sci.toml, 480 J appeared at the
+// switch (the crater flow then carried about 2,000 J), heaved the whole target by metres over 100 s and
+// opened a "crater" of loosened material (docs/validation.md, "Impact craters"). The matrix strain
+// alpha P / A_low stays capped at +-late_stage_max_reference_strain, and the elastic shear strain
+// sqrt(J2)/(2 G) under the new G at the same 0.1 (cap_elastic_shear_strain()).
+// The switch is logged on stderr with the largest Mach number |v|/c just after it; the largest Mach
+// number over the late stage is tracked every step. Both go into the attributes of later snapshots and
+// checkpoints (record_late_stage(), plus "late_stage_max_mach"), and a run resumed from a checkpoint
+// written after the switch starts in the switched state.
+//
+// Ejecta (ejecta.hpp): after every step, moving particles beyond the problem's ejection radius are
+// flagged particle_ejected and moved behind the others; the neighbour search and the pair loops only see
+// the first active_particles() particles, the other phases skip the flag.
+//
+// run_simulation() adds the outputs around the steps: HDF5 snapshots at the requested times (with
+// XDMF), a checkpoint (atomically replaced) every N steps or wall seconds and at the end, the
+// conserved-quantities log per step, the progress line, and the summary.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "craterkit/sph/integration/block_time_steps.hpp"
+#include "craterkit/sph/io/config.hpp"
+#include "craterkit/sph/io/conservation_log.hpp"
+#include "craterkit/impact/crater_measurement.hpp"
+#include "craterkit/sph/solver/ejecta.hpp"
+#include "craterkit/impact/impact_setup.hpp"
+#include "craterkit/sph/integration/integrator.hpp"
+#include "craterkit/sph/physics/late_stage.hpp"
+#include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/solver/phase_timers.hpp"
+#include "craterkit/sph/rates/rates.hpp"
+#include "craterkit/sph/run/setups.hpp"
+#include "craterkit/sph/io/snapshot.hpp"
+#include "craterkit/sph/rates/stress_rates.hpp"
+#include "craterkit/sph/integration/time_step.hpp"
+
+namespace craterkit::sph {
+
+constexpr double late_stage_max_reference_strain = 0.1;
+
+// The set-up named by the configuration (problem.setup), with what the run needs besides the
+// particles: the impact summary (impact set-ups only), the late-stage plan (impact: from the summary,
+// A_low scaled by the stand-in's density factor for the projectile material; others: [late_stage]),
+// the ejection radius (impact: R_dom) and the constant run attributes (impact_run_attributes()).
+struct Scenario {
+  ProblemSetup problem;
+  std::optional<ImpactSummary> impact;
+};
+Scenario build_scenario(const SimulationConfig& config);
+ProblemSetup build_problem(const SimulationConfig& config);
+
+class Simulation {
+ public:
+  // A fresh run at t = 0: evaluates the rates and the first time step.
+  Simulation(SimulationConfig config, ProblemSetup problem);
+  // Continues from a checkpoint: `problem` supplies the materials and the box, `particles` and
+  // `attributes` (time, step, next time step, initial conserved quantities) the state.
+  Simulation(SimulationConfig config, ProblemSetup problem, Particles particles,
+             const RunAttributes& attributes);
+
+  // Advances one step, shortened so as not to pass target_time (the step then ends exactly on it).
+  // Throws std::runtime_error if the time step collapses (not positive or not finite).
+  void step(double target_time);
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] std::uint64_t step_count() const { return step_; }
+  [[nodiscard]] double next_time_step() const { return dt_next_; }
+  [[nodiscard]] const TimeStepLimits& time_step_limits() const { return limits_; }
+  [[nodiscard]] Particles& particles() { return problem_.particles; }
+  [[nodiscard]] const Particles& particles() const { return problem_.particles; }
+  [[nodiscard]] const std::vector<Material>& materials() const { return problem_.materials; }
+  [[nodiscard]] const Box& box() const { return problem_.box; }
+  [[nodiscard]] const SimulationConfig& config() const { return config_; }
+  [[nodiscard]] PhaseTimers& timers() { return timers_; }
+  // Interacting pairs (r < h_i + h_j) per particle in the last rate evaluation.
+  [[nodiscard]] double mean_neighbours() const;
+  [[nodiscard]] const ConservedQuantities& initial_conserved() const { return initial_; }
+  [[nodiscard]] ConservedQuantities conserved() const;
+  // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
+  [[nodiscard]] double bytes_per_particle() const;
+  [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
+  // Particle updates (one per particle and rate evaluation of its own step) since construction: particles
+  // x steps with a global step, the sum over substeps of the particles whose step ended with block steps.
+  [[nodiscard]] std::uint64_t particle_updates() const { return particle_updates_; }
+  // Block time steps: the schedule of the last block (levels, finest level).
+  [[nodiscard]] const BlockSchedule& block_schedule() const { return schedule_; }
+  // Particles not ejected (they come first in the arrays).
+  [[nodiscard]] std::size_t active_particles() const { return active_; }
+  [[nodiscard]] const ProblemSetup& problem() const { return problem_; }
+
+  // Late stage: whether the switch has happened, the largest Mach number just after it and since.
+  [[nodiscard]] bool late_stage_active() const { return late_stage_active_; }
+  [[nodiscard]] double mach_at_transition() const { return mach_at_transition_; }
+  [[nodiscard]] double late_stage_max_mach() const { return late_stage_max_mach_; }
+  // Ejections since the last call (in order), for the ejecta log.
+  [[nodiscard]] std::vector<EjectaRecord> take_new_ejecta() { return std::exchange(new_ejecta_, {}); }
+
+  // Everything a checkpoint needs besides the particles.
+  [[nodiscard]] RunAttributes attributes() const;
+  // Rebuild the neighbour lists at the next step (after a checkpoint, so that a restarted run, which
+  // must build them afresh, follows the same sequence of lists).
+  void force_neighbour_rebuild() { force_rebuild_ = true; }
+
+ private:
+  void configure();          // shared by both constructors: laws, rate options, particle storage
+  void update_neighbours();  // rebuilds the lists when the skin no longer covers the motion
+  // Block time steps: exact lists of the given particles only (NeighbourSearch::build_for).
+  void update_neighbours(std::span<const std::uint32_t> queries);
+  void evaluate_rates();  // neighbours, then the state and the rates of every particle
+  // The state (equation of state, returns to the yield surface and the crush curve) of `state_for` and
+  // the rates of `rates_for`; the lists must be current.
+  void evaluate_rates(const ParticleSelection& rates_for, const ParticleSelection& state_for);
+  void update_equation_of_state();
+  void update_equation_of_state(const ParticleSelection& selection);
+  void advance_block(double block);  // block time steps (block_time_steps.hpp) over one block
+  // The given particles and all their neighbours (block time steps: whose state an active particle reads).
+  ParticleSelection neighbourhood_of(std::span<const std::uint32_t> particles);
+  [[nodiscard]] TimeStepParameters time_step_parameters() const;
+  // The next step (global) or block: the longest particle step, at most 2^block_levels times the
+  // shortest and at most max_step (block_levels = 0: the shortest, the global step).
+  [[nodiscard]] double next_block_length() const;
+  // The materials and the fluid laws (no logging, no rate evaluation); returns each material's stress
+  // factor sqrt(A_low/A).
+  std::vector<double> switch_to_late_stage();
+  void eject();  // flags, records and moves ejecta behind the active particles
+  void carry_stress_across_switch(const std::vector<double>& stress_factor);
+  void cap_elastic_shear_strain();
+
+  SimulationConfig config_;
+  ProblemSetup problem_;
+  std::vector<EquationOfState> equations_of_state_;
+  RateOptions rate_options_;
+  NeighbourSearch search_;
+  NeighbourLists lists_;
+  RateWorkspace rate_workspace_;
+  VelocityGradients gradients_;        // solid runs only
+  std::vector<double> shear_modulus_;  // solid runs only: G per particle, Pa
+  IntegratorWorkspace integrator_workspace_;
+  std::vector<std::uint32_t> order_;
+  BlockSchedule schedule_;
+  std::vector<std::uint8_t> needed_mark_;   // block steps: scratch of neighbourhood_of()
+  std::vector<std::uint32_t> needed_list_;  // block steps: the particles whose state is read
+  std::vector<std::uint32_t> all_indices_;  // block steps: 0 .. active_-1
+  std::uint64_t particle_updates_ = 0;
+  PhaseTimers timers_;
+  RateSummary rate_summary_{};
+  TimeStepLimits limits_{};
+  ConservedQuantities initial_{};
+  double time_ = 0.0;
+  double dt_next_ = 0.0;
+  std::uint64_t step_ = 0;
+  std::uint64_t rebuilds_ = 0;
+  bool force_rebuild_ = true;
+  bool porous_ = false;  // a material has [porosity]: the distention evolves (P-alpha)
+  std::size_t active_ = 0;
+  bool late_stage_active_ = false;
+  double mach_at_transition_ = 0.0;
+  double late_stage_max_mach_ = 0.0;
+  std::vector<EjectaRecord> new_ejecta_;
+};
+
+struct RunOptions {
+  std::filesystem::path output_directory;  // empty: run without writing files
+  bool resume = false;                     // continue from output_directory/checkpoint.h5 if present
+  bool progress = true;                    // the progress line on stderr
+  bool log = true;                         // set-up description and late-stage messages on stderr
+};
+
+struct SimulationSummary {
+  std::string name;
+  std::string setup;
+  std::size_t particles = 0;
+  std::uint64_t steps = 0;           // completed steps of the run (including before a restart)
+  std::uint64_t steps_this_run = 0;  // steps taken by this invocation
+  double time = 0.0;                 // s, simulated
+  double wall_seconds = 0.0;
+  double particle_updates_per_second = 0.0;  // particle updates of this run / wall_seconds (particles x
+                                             // steps with a global step; Simulation::particle_updates())
+  std::uint64_t particle_updates = 0;        // of this run
+  double mean_neighbours = 0.0;
+  double relative_energy_error = 0.0;
+  double relative_momentum_error = 0.0;
+  // False when external forces act on the particles - gravity, fixed (boundary) particles, mirror planes -
+  // so that total momentum is not conserved: relative_momentum_error is then the momentum they took up
+  // (for an impact into a target held by its shell, about the projectile's), not an error of the scheme.
+  bool momentum_conserved = true;
+  double bytes_per_particle = 0.0;
+  int threads = 1;
+  bool resumed = false;
+  std::uint64_t neighbour_rebuilds = 0;
+  std::vector<std::pair<std::string, double>> phase_seconds;
+  std::vector<std::string> snapshots;  // files written by this invocation
+  std::string checkpoint;              // the last checkpoint written ("" if none)
+  std::string conservation_log;
+  std::string phase_table;  // PhaseTimers::table()
+  // Late stage (when planned).
+  bool late_stage = false;           // the switch happened
+  double transition_time = 0.0;      // s
+  double mach_at_transition = 0.0;   // max |v|/c just after the switch
+  double late_stage_max_mach = 0.0;  // max |v|/c over the late stage
+  // Impact runs.
+  std::size_t ejected_particles = 0;
+  double ejected_mass = 0.0;  // kg (in this domain)
+  std::string ejecta_log;
+  bool crater_growth_ended = false;  // stopped because growth ended (else end_time or max_steps)
+  // The first sample of crater_growth.csv at which the end-of-growth rule held (also when the run went on
+  // with stop_when_grown = false), and its radius (m, the axis radii of the sample).
+  std::optional<double> crater_growth_end_time;    // s
+  std::optional<double> crater_growth_end_radius;  // m
+  std::optional<CraterMeasurement> crater;         // final measurement
+  std::string crater_json;
+};
+
+SimulationSummary run_simulation(const SimulationConfig& config, const RunOptions& options);
+
+}  // namespace craterkit::sph

@@ -1,0 +1,55 @@
+#include "craterkit/sph/solver/ejecta.hpp"
+
+#include <cstdio>
+
+namespace craterkit::sph {
+
+std::size_t eject_particles(Particles& p, const EjectionRule& rule,
+                            std::span<const std::uint32_t> neighbour_count, double time, std::uint64_t step,
+                            std::vector<EjectaRecord>& out) {
+  if (!(rule.radius > 0.0)) return 0;
+  const double r2 = rule.radius * rule.radius;
+  const double v2 = rule.escape_speed * rule.escape_speed;
+  const bool escape_rule = rule.escape_speed > 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0 || !(p.z[i] > 0.0)) continue;
+    const bool left = p.x[i] * p.x[i] + p.y[i] * p.y[i] + p.z[i] * p.z[i] > r2;
+    const bool escaping = escape_rule && p.vz[i] > 0.0 && i < neighbour_count.size() &&
+                          neighbour_count[i] == 0 &&
+                          p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i] > v2;
+    if (!left && !escaping) continue;
+    p.flags[i] |= particle_ejected;
+    out.push_back(
+        {p.id[i], p.material[i], p.mass[i], time, step, p.x[i], p.y[i], p.z[i], p.vx[i], p.vy[i], p.vz[i]});
+    ++count;
+  }
+  return count;
+}
+
+std::vector<std::uint32_t> ejected_last_order(const Particles& p, std::size_t* active) {
+  std::vector<std::uint32_t> order;
+  order.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.flags[i] & particle_ejected) == 0) order.push_back(static_cast<std::uint32_t>(i));
+  }
+  *active = order.size();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.flags[i] & particle_ejected) != 0) order.push_back(static_cast<std::uint32_t>(i));
+  }
+  return order;
+}
+
+const char* ejecta_csv_header() {
+  return "id,material,mass,time,step,x,y,z,vx,vy,vz";
+}
+
+std::string ejecta_csv_row(const EjectaRecord& r) {
+  char row[512];
+  std::snprintf(row, sizeof row, "%llu,%u,%.17g,%.17g,%llu,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
+                static_cast<unsigned long long>(r.id), static_cast<unsigned>(r.material), r.mass, r.time,
+                static_cast<unsigned long long>(r.step), r.x, r.y, r.z, r.vx, r.vy, r.vz);
+  return row;
+}
+
+}  // namespace craterkit::sph

@@ -1,0 +1,129 @@
+// Block time steps (block_time_steps.hpp): the level rule, the schedule of a block (every particle
+// takes 2^level steps that tile the block, no particle more than block_neighbour_levels coarser than a
+// neighbour),
+// and the schedule on a chain whose one particle needs a short step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "craterkit/sph/integration/block_time_steps.hpp"
+
+using namespace craterkit::sph;
+
+TEST(BlockLevel, SmallestLevelWithinTheLimit) {
+  EXPECT_EQ(block_level(1.0, 1.0), 0);
+  EXPECT_EQ(block_level(1.0, 2.0), 0);
+  EXPECT_EQ(block_level(1.0, std::numeric_limits<double>::infinity()), 0);
+  EXPECT_EQ(block_level(1.0, 0.5), 1);
+  EXPECT_EQ(block_level(1.0, 0.4999999), 2);
+  EXPECT_EQ(block_level(1.0, 0.25), 2);
+  EXPECT_EQ(block_level(3.0, 0.1), 5);  // 3/32 = 0.094 <= 0.1 < 3/16
+  EXPECT_EQ(block_level(1.0, std::ldexp(1.0, -40)), 40);
+  EXPECT_GT(block_level(1.0, 0.0), block_finest_level_limit);
+  EXPECT_GT(block_level(1.0, 1e-300), block_finest_level_limit);
+  EXPECT_GT(block_level(1.0, std::nan("")), block_finest_level_limit);  // NaN: an error, not level 0
+}
+
+namespace {
+
+// A chain 0 - 1 - 2 - ... - (n-1): each particle's neighbours are the next and the previous one.
+NeighbourLists chain(std::size_t n) {
+  NeighbourLists lists;
+  lists.offsets.push_back(0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0) lists.neighbours.push_back(static_cast<std::uint32_t>(i - 1));
+    if (i + 1 < n) lists.neighbours.push_back(static_cast<std::uint32_t>(i + 1));
+    lists.offsets.push_back(lists.neighbours.size());
+  }
+  return lists;
+}
+
+}  // namespace
+
+TEST(BlockSchedule, NeighbourRuleAndEveryStepTilesTheBlock) {
+  const std::size_t n = 12;
+  const auto lists = chain(n);
+  std::vector<double> step(n, 1.0);
+  step[3] = 1.0 / 64;  // level 6
+  std::vector<std::uint8_t> flags(n, particle_active);
+  flags[11] = particle_fixed;  // not scheduled
+  BlockSchedule s;
+  s.start(1.0, step, flags, n, lists);
+  EXPECT_EQ(s.finest_level(), 6);
+  // Levels fall by block_neighbour_levels (one) per hop away from particle 3.
+  ASSERT_EQ(block_neighbour_levels, 1);
+  const std::vector<int> expected{3, 4, 5, 6, 5, 4, 3, 2, 1, 0, 0};
+  std::vector<int> activations(n, 0);
+  std::vector<double> elapsed(n, 0.0);
+  double time = 0.0;
+  int substeps = 0;
+  while (!s.finished()) {
+    time += s.advance();
+    ++substeps;
+    for (const auto i : s.active()) {
+      ++activations[i];
+      elapsed[i] += s.active_steps()[i];
+      EXPECT_DOUBLE_EQ(elapsed[i], time) << "particle " << i << " ends its step at the tick";
+    }
+    s.relevel(step, lists);
+  }
+  EXPECT_EQ(substeps, 64);
+  EXPECT_DOUBLE_EQ(time, 1.0);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    EXPECT_EQ(activations[i], 1 << expected[i]) << "particle " << i;
+    EXPECT_DOUBLE_EQ(elapsed[i], 1.0);
+  }
+  EXPECT_EQ(activations[11], 0);  // fixed
+}
+
+TEST(BlockSchedule, LevelsRefineWithinTheBlockAndCoarsenOnlyWhereAligned) {
+  const std::size_t n = 3;
+  const auto lists = chain(n);
+  std::vector<double> step{1.0, 1.0, 1.0};
+  const std::vector<std::uint8_t> flags(n, particle_active);
+  BlockSchedule s;
+  s.start(1.0, step, flags, n, lists);
+  ASSERT_EQ(s.finest_level(), 0);
+  // Particle 0 starts at level 1 (half the block).
+  step = {0.5, 1.0, 1.0};
+  s.start(1.0, step, flags, n, lists);
+  ASSERT_EQ(s.finest_level(), 1);
+  (void)s.advance();  // tick 1 of 2: particle 0 ends its first half step
+  ASSERT_EQ(s.active().size(), 1u);
+  // It now needs 1/8: two more levels, inside the block.
+  step[0] = 0.125;
+  s.relevel(step, lists);
+  EXPECT_EQ(s.finest_level(), 3);
+  double time = 0.5;
+  int count = 0;
+  while (!s.finished()) {
+    time += s.advance();
+    ++count;
+    // Wants to go back to the block step at once: coarsens one level at a time, where aligned.
+    step[0] = 1.0;
+    s.relevel(step, lists);
+  }
+  EXPECT_DOUBLE_EQ(time, 1.0);
+  // From 0.5 with 1/8 to 0.625; 1/4 is not aligned there (0.625 / 0.25 is not whole), so 1/8 again to
+  // 0.75, which is aligned to 1/4: to 1.0. Three substeps.
+  EXPECT_EQ(count, 3);
+}
+
+TEST(BlockSchedule, CollapsedStepIsAnErrorThatNamesTheParticle) {
+  const auto lists = chain(3);
+  const std::vector<double> step{1.0, 1e-300, 1.0};
+  const std::vector<std::uint8_t> flags(3, particle_active);
+  BlockSchedule s;
+  try {
+    s.start(1.0, step, flags, 3, lists);
+    FAIL() << "no exception";
+  } catch (const TimeStepCollapse& e) {
+    EXPECT_EQ(e.particle, 1u);  // the simulation reports this particle's state and limits
+    EXPECT_NE(std::string(e.what()).find("1e-300 s needs more than 50 halvings"), std::string::npos)
+        << e.what();
+  }
+}

@@ -1,0 +1,306 @@
+// Neighbour search: lists equal a brute-force O(n^2) search (variable h, open and periodic axes, skin),
+// are symmetric, independent of the thread count, and the rebuild criterion is sufficient.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "craterkit/sph/neighbours/neighbour_search.hpp"
+
+namespace craterkit::sph {
+namespace {
+
+struct Cloud {
+  std::vector<double> x, y, z, h;
+  [[nodiscard]] NeighbourInput input() const { return {x, y, z, h}; }
+};
+
+// n points uniform in [0, 1)^3 with h in [h_lo, h_hi]; a fraction `scattered` thrown over [-50, 50)^3.
+Cloud random_cloud(std::size_t n, double h_lo, double h_hi, double scattered, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Cloud c;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool far = unit(rng) < scattered;
+    const double scale = far ? 100.0 : 1.0, shift = far ? -50.0 : 0.0;
+    c.x.push_back(shift + scale * unit(rng));
+    c.y.push_back(shift + scale * unit(rng));
+    c.z.push_back(shift + scale * unit(rng));
+    c.h.push_back(h_lo + (h_hi - h_lo) * unit(rng));
+  }
+  return c;
+}
+
+// Reference lists written out independently of the library: every pair, minimum image by rounding.
+std::vector<std::vector<std::uint32_t>> brute_force(const Cloud& c, const Box& box, double skin) {
+  const std::size_t n = c.x.size();
+  std::vector<std::vector<std::uint32_t>> lists(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j) continue;
+      double d[3] = {c.x[i] - c.x[j], c.y[i] - c.y[j], c.z[i] - c.z[j]};
+      for (int a = 0; a < 3; ++a) {
+        if (box.periodic[a]) {
+          const double edge = box.upper[a] - box.lower[a];
+          d[a] -= edge * std::round(d[a] / edge);
+        }
+      }
+      const double reach = (1 + skin) * (c.h[i] + c.h[j]);
+      if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < reach * reach) lists[i].push_back(std::uint32_t(j));
+    }
+  }
+  return lists;
+}
+
+void expect_equal_to_brute_force(const NeighbourLists& lists,
+                                 const std::vector<std::vector<std::uint32_t>>& ref) {
+  ASSERT_EQ(lists.particle_count(), ref.size());
+  ASSERT_EQ(lists.offsets.front(), 0u);
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    auto got = std::vector<std::uint32_t>(lists.of(i).begin(), lists.of(i).end());
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, ref[i]) << "particle " << i;
+    total += ref[i].size();
+  }
+  EXPECT_EQ(lists.total(), total);
+}
+
+struct Case {
+  double skin;
+  std::size_t leaf_size;
+};
+
+class NeighbourSearchTest : public ::testing::TestWithParam<Case> {};
+
+TEST_P(NeighbourSearchTest, EqualsBruteForceVariableH) {
+  const Cloud c = random_cloud(3000, 0.03, 0.1, 0.0, 1);
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
+  const NeighbourLists lists = search.build(c.input(), Box{});
+  expect_equal_to_brute_force(lists, brute_force(c, Box{}, GetParam().skin));
+  EXPECT_GT(lists.mean_neighbours(), 10.0);  // the test must exercise real neighbour sets
+}
+
+TEST_P(NeighbourSearchTest, EqualsBruteForceWithScatteredEjectaAndWideH) {
+  // 5 % of particles over a 100x larger box, h spanning a factor 20: sparse cells and far tree nodes.
+  Cloud c = random_cloud(3000, 0.005, 0.1, 0.05, 2);
+  c.h[7] = 3.0;    // one particle with a huge h reaching many others
+  c.x[11] = 1e9;   // one particle beyond the 2^21 Morton resolution of the bulk: the bulk shares one key
+  c.y[12] = -1e7;  // and the octree must split it at medians (split_at_median)
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
+  expect_equal_to_brute_force(search.build(c.input(), Box{}), brute_force(c, Box{}, GetParam().skin));
+}
+
+TEST_P(NeighbourSearchTest, EqualsBruteForcePeriodic) {
+  const Cloud c = random_cloud(2500, 0.02, 0.08, 0.0, 3);
+  for (const std::array<bool, 3> periodic :
+       {std::array<bool, 3>{true, false, false}, std::array<bool, 3>{true, true, true},
+        std::array<bool, 3>{false, true, true}}) {
+    const Box box{{0, 0, 0}, {1, 1, 1}, periodic};
+    NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
+    SCOPED_TRACE(::testing::Message() << periodic[0] << periodic[1] << periodic[2]);
+    expect_equal_to_brute_force(search.build(c.input(), box), brute_force(c, box, GetParam().skin));
+  }
+}
+
+TEST_P(NeighbourSearchTest, PeriodicBoxOnlyFewCellsWideAndPositionsOutsideBox) {
+  // Box edge just above 2 x reach (two cells along the axis): neighbours across the boundary must appear
+  // once. Positions one box edge outside are wrapped by the search.
+  Cloud c = random_cloud(800, 0.1, 0.12, 0.0, 4);
+  for (std::size_t i = 0; i < c.x.size(); i += 3) c.x[i] += 1.0;
+  const Box box{{0, 0, 0}, {1, 1, 1}, {true, true, true}};
+  NeighbourSearch search({0.0, GetParam().leaf_size});
+  expect_equal_to_brute_force(search.build(c.input(), box), brute_force(c, box, 0.0));
+}
+
+TEST_P(NeighbourSearchTest, ListsAreSymmetric) {
+  const Cloud c = random_cloud(5000, 0.005, 0.05, 0.01, 5);
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
+  const NeighbourLists lists = search.build(c.input(), Box{});
+  for (std::size_t i = 0; i < lists.particle_count(); ++i) {
+    for (const std::uint32_t j : lists.of(i)) {
+      const auto back = lists.of(j);
+      ASSERT_NE(std::find(back.begin(), back.end(), std::uint32_t(i)), back.end()) << i << " -> " << j;
+    }
+  }
+}
+
+TEST_P(NeighbourSearchTest, IndependentOfThreadCountAndReusesBuffers) {
+  const Cloud c = random_cloud(20000, 0.01, 0.03, 0.01, 6);
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  NeighbourLists one;
+  search.build(c.input(), Box{}, one);
+  omp_set_num_threads(2);
+  NeighbourLists two;
+  search.build(c.input(), Box{}, two);
+  search.build(c.input(), Box{}, two);  // a rebuild into the same lists gives the same answer
+  search.release_workspace();
+  EXPECT_FALSE(search.needs_rebuild(c.input()));  // the build state survives the release
+  NeighbourLists three;
+  search.build(c.input(), Box{}, three);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one.neighbours, three.neighbours);
+  EXPECT_EQ(one.offsets, two.offsets);
+  EXPECT_EQ(one.neighbours, two.neighbours);  // same order too: sums in the engine are reproducible
+}
+
+TEST_P(NeighbourSearchTest, ExactWhenTheSampledCountsMislead) {
+  // The lists are written into regions sized from every 16th particle's count. Make exactly those
+  // particles isolated, so the regions are far too small and the overflow path must take over.
+  Cloud c = random_cloud(4000, 0.04, 0.06, 0.0, 9);
+  for (std::size_t i = 0; i < c.x.size(); i += 16) c.x[i] += 1000.0 + double(i);
+  NeighbourSearch search({GetParam().skin, GetParam().leaf_size});
+  for (const int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    expect_equal_to_brute_force(search.build(c.input(), Box{}), brute_force(c, Box{}, GetParam().skin));
+  }
+  omp_set_num_threads(2);
+}
+
+INSTANTIATE_TEST_SUITE_P(SkinAndLeafSize, NeighbourSearchTest,
+                         ::testing::Values(Case{0.0, 4}, Case{0.15, 16}, Case{0.0, 64}, Case{0.15, 64}));
+
+TEST(NeighbourSearch, EdgeCases) {
+  NeighbourSearch search;
+  const NeighbourLists empty = search.build(NeighbourInput{}, Box{});
+  EXPECT_EQ(empty.particle_count(), 0u);
+  EXPECT_EQ(empty.total(), 0u);
+
+  // Coincident points are neighbours of each other but not of themselves.
+  const Cloud c{{0.5, 0.5, 0.5, 3.0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0.1, 0.1, 0.1, 0.1}};
+  const NeighbourLists lists = search.build(c.input(), Box{});
+  EXPECT_EQ(lists.count(0), 2u);
+  EXPECT_EQ(lists.count(3), 0u);
+
+  // Exactly at r = h_i + h_j is outside (strict inequality).
+  const Cloud edge{{0.0, 0.25}, {0, 0}, {0, 0}, {0.125, 0.125}};
+  EXPECT_EQ(search.build(edge.input(), Box{}).total(), 0u);
+}
+
+TEST(NeighbourSearch, RejectsBadInput) {
+  NeighbourSearch search;
+  const Cloud bad_h{{0, 1}, {0, 0}, {0, 0}, {0.1, 0.0}};
+  EXPECT_THROW((void)search.build(bad_h.input(), Box{}), std::invalid_argument);
+  const Cloud nan_h{{0, 1}, {0, 0}, {0, 0}, {0.1, std::nan("")}};
+  EXPECT_THROW((void)search.build(nan_h.input(), Box{}), std::invalid_argument);
+  const Cloud nan_x{{0, std::nan("")}, {0, 0}, {0, 0}, {0.1, 0.1}};
+  EXPECT_THROW((void)search.build(nan_x.input(), Box{}), std::invalid_argument);
+  const Cloud short_h{{0, 1}, {0, 0}, {0, 0}, {0.1}};
+  EXPECT_THROW((void)search.build(short_h.input(), Box{}), std::invalid_argument);
+  // Periodic edge 1 with h = 0.3: pairs could interact through two images.
+  const Cloud big_h{{0.1, 0.6}, {0, 0}, {0, 0}, {0.3, 0.3}};
+  EXPECT_THROW((void)search.build(big_h.input(), Box{{0, 0, 0}, {1, 1, 1}, {true, false, false}}),
+               std::invalid_argument);
+  EXPECT_THROW(NeighbourSearch({-0.1, 16}), std::invalid_argument);
+  EXPECT_THROW(NeighbourSearch({0.1, 0}), std::invalid_argument);
+}
+
+TEST(NeighbourSearch, RebuildCriterionIsSufficient) {
+  // Move every particle by random displacements and grow h; whenever needs_rebuild() says no, the old
+  // (skinned) lists must still contain every true pair of the new configuration.
+  const double skin = 0.2;
+  Cloud c = random_cloud(3000, 0.02, 0.05, 0.0, 7);
+  NeighbourSearch search({skin, 16});
+  const NeighbourLists lists = search.build(c.input(), Box{});
+  EXPECT_FALSE(search.needs_rebuild(c.input()));
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int kept = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    const double amplitude = 0.001 * (trial + 1);  // from inside to well beyond the skin (0.2 h >= 0.004)
+    Cloud moved = c;
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      moved.x[i] += amplitude * unit(rng) / std::sqrt(3.0);
+      moved.y[i] += amplitude * unit(rng) / std::sqrt(3.0);
+      moved.z[i] += amplitude * unit(rng) / std::sqrt(3.0);
+      moved.h[i] *= 1.0 + 0.25 * amplitude * (unit(rng) + 1.0);
+    }
+    if (search.needs_rebuild(moved.input())) continue;
+    ++kept;
+    const auto truth = brute_force(moved, Box{}, 0.0);
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      const auto have = lists.of(i);
+      for (const std::uint32_t j : truth[i]) {
+        ASSERT_NE(std::find(have.begin(), have.end(), j), have.end())
+            << "trial " << trial << " pair " << i << j;
+      }
+    }
+  }
+  EXPECT_GE(kept, 1);   // small moves are accepted...
+  EXPECT_LT(kept, 12);  // ...large ones are not
+  Cloud one_far = c;
+  one_far.x[10] += 1.001 * skin * c.h[10];  // just beyond s h_10
+  EXPECT_TRUE(search.needs_rebuild(one_far.input()));
+  EXPECT_TRUE(search.needs_rebuild(Cloud{}.input()));  // particle count changed
+}
+
+// Block time steps: build_for lists only the queried particles, exactly (no skin), at the current
+// positions, through a refit octree while the motion since its build is within the skin, and through a new
+// one after; the lists equal brute force for the queried particles and are empty for the others.
+TEST(NeighbourSearch, ListsForQueriesThroughRefitsEqualBruteForce) {
+  Cloud c = random_cloud(3000, 0.02, 0.06, 0.01, 21);
+  const Box box{};  // open
+  NeighbourSearchOptions options;
+  options.skin = 0.3;
+  NeighbourSearch search(options);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  NeighbourLists lists;
+  std::uint64_t restructures_seen = 0;
+  for (int round = 0; round < 12; ++round) {
+    std::vector<std::uint32_t> queries;
+    for (std::uint32_t i = 0; i < c.x.size(); ++i) {
+      if ((i * 7 + std::uint32_t(round)) % 5 == 0) queries.push_back(i);
+    }
+    search.build_for(c.input(), box, queries, lists, round == 0);
+    const auto ref = brute_force(c, box, 0.0);
+    ASSERT_EQ(lists.particle_count(), c.x.size());
+    std::size_t at = 0;
+    for (std::uint32_t i = 0; i < c.x.size(); ++i) {
+      const bool queried = at < queries.size() && queries[at] == i;
+      if (queried) ++at;
+      auto got = std::vector<std::uint32_t>(lists.of(i).begin(), lists.of(i).end());
+      std::sort(got.begin(), got.end());
+      if (queried) {
+        ASSERT_EQ(got, ref[i]) << "round " << round << ", particle " << i;
+      } else {
+        ASSERT_TRUE(got.empty()) << "round " << round << ", particle " << i;
+      }
+    }
+    restructures_seen = search.restructures();
+    // Motion of a few per cent of h per round and growing h: some rounds refit, a later one rebuilds.
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      c.x[i] += 0.004 * unit(rng);
+      c.y[i] += 0.004 * unit(rng);
+      c.z[i] += 0.004 * unit(rng);
+      c.h[i] *= 1.0 + 0.01 * (unit(rng) + 1.0);
+    }
+  }
+  EXPECT_GT(restructures_seen, 1u);   // the skin was used up at some point
+  EXPECT_LT(restructures_seen, 12u);  // and the refits did the other rounds
+}
+
+TEST(NeighbourSearch, MinimumImageAndWrap) {
+  const Box box{{-1, 0, 0}, {1, 10, 1}, {true, false, true}};
+  EXPECT_DOUBLE_EQ(minimum_image(box, 0, 1.5), -0.5);
+  EXPECT_DOUBLE_EQ(minimum_image(box, 0, -1.5), 0.5);
+  EXPECT_DOUBLE_EQ(minimum_image(box, 0, 0.9), 0.9);
+  EXPECT_DOUBLE_EQ(minimum_image(box, 1, 9.0), 9.0);  // open axis untouched
+  const auto d = displacement(box, 0.95, 1.0, 0.05, -0.95, 3.0, 0.95);
+  EXPECT_NEAR(d[0], -0.1, 1e-12);
+  EXPECT_DOUBLE_EQ(d[1], -2.0);
+  EXPECT_NEAR(d[2], 0.1, 1e-12);
+  EXPECT_DOUBLE_EQ(wrap_position(box, 0, 1.25), -0.75);
+  EXPECT_DOUBLE_EQ(wrap_position(box, 0, -3.5), 0.5);
+  EXPECT_DOUBLE_EQ(wrap_position(box, 0, 1.0), -1.0);
+  EXPECT_DOUBLE_EQ(wrap_position(box, 1, 12.0), 12.0);
+}
+
+}  // namespace
+}  // namespace craterkit::sph
