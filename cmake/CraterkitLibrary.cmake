@@ -1,8 +1,9 @@
-# craterkit_add_library(NAME <short> DIR <dir> [DEPS <targets...>])
-# A library target craterkit_<short> with the alias craterkit::<short>, sources globbed from <dir>/src,
-# public headers in <dir>/include/craterkit/<...>, installed and exported.
+# craterkit_add_library(NAME <short> [DEPS <targets...>] [PRIVATE_DEPS <targets...>])
+# A library target craterkit_<short> with the alias craterkit::<short>, sources globbed from src/ of the
+# calling directory, public headers in include/craterkit/<...>, installed and exported. DEPS are what the
+# public headers use (a consumer sees them); PRIVATE_DEPS only what the sources use.
 function(craterkit_add_library)
-  cmake_parse_arguments(ARG "" "NAME" "DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "NAME" "DEPS;PRIVATE_DEPS" ${ARGN})
   file(GLOB_RECURSE _sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/*.cpp)
   if(NOT _sources)
     message(FATAL_ERROR "craterkit_${ARG_NAME}: no sources in ${CMAKE_CURRENT_SOURCE_DIR}/src")
@@ -13,7 +14,7 @@ function(craterkit_add_library)
   target_include_directories(craterkit_${ARG_NAME} PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
                                                           $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
   target_compile_features(craterkit_${ARG_NAME} PUBLIC cxx_std_20)
-  target_link_libraries(craterkit_${ARG_NAME} PUBLIC ${ARG_DEPS} PRIVATE $<BUILD_INTERFACE:craterkit_warnings>)
+  target_link_libraries(craterkit_${ARG_NAME} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS} $<BUILD_INTERFACE:craterkit_warnings>)
   install(TARGETS craterkit_${ARG_NAME} EXPORT craterkitTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
           LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

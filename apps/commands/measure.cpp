@@ -1,5 +1,6 @@
-// craterkit measure: the crater of an SPH snapshot (physics.md section 5): crater.json and
-// crater_profile.csv (formats in docs/crater_measurement.md).
+// craterkit measure: the crater of an SPH snapshot (physics.md section 5), printed, and with --out written as
+// crater.json and crater_profile.csv (formats in docs/crater_measurement.md). The snapshot of an impact run
+// is measured as the run measured it (its run record: impact/impact_run_record.hpp); flags override.
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -13,7 +14,7 @@
 
 #include "command_registry.hpp"
 #include "craterkit/common/input_error.hpp"
-#include "craterkit/impact/crater_measurement.hpp"
+#include "craterkit/impact/impact_run_record.hpp"
 #include "craterkit/sph/io/snapshot.hpp"
 
 namespace craterkit::cli {
@@ -25,7 +26,7 @@ struct MeasureOptions {
   std::optional<double> spacing;
   std::optional<std::string> kernel;
   std::vector<double> centre;
-  double max_radius = 0.0;
+  std::optional<double> max_radius;
   std::size_t azimuths = 64;
   double radial_step = 0.0;
   double wall_depth = 0.0;
@@ -35,33 +36,11 @@ struct MeasureOptions {
   bool json = false;
 };
 
-// Snapshot attributes the simulation records for the measurement (RunAttributes::numbers / texts).
-constexpr const char* attribute_rho_initial = "initial_bulk_density";  // kg/m^3
-constexpr const char* attribute_spacing = "particle_spacing";          // m (graded: the outer spacing)
-constexpr const char* attribute_inner_spacing = "inner_spacing";       // m, graded target's core spacing
-constexpr const char* attribute_inner_radius = "inner_radius";         // m, graded target's core radius
-constexpr const char* attribute_grading = "grading";                   // graded target's growth per spacing
-constexpr const char* attribute_kernel = "kernel";                     // "cubic_spline" | "wendland_c2"
-constexpr const char* attribute_symmetry = "symmetry";                 // "quarter": mirrored at x = 0, y = 0
-
-double resolve_number(const std::optional<double>& flag_value, const sph::RunAttributes& attributes,
-                      const char* attribute, const char* flag, const std::string& snapshot) {
-  if (flag_value) {
-    if (!(*flag_value > 0.0) || !std::isfinite(*flag_value)) {
-      throw InputError(fmt::format("{} {} is not allowed: must be a finite number > 0", flag, *flag_value));
-    }
-    return *flag_value;
+double positive_flag(double value, const char* flag) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw InputError(fmt::format("{} {} is not allowed: must be a finite number > 0", flag, value));
   }
-  const auto it = attributes.numbers.find(attribute);
-  if (it == attributes.numbers.end()) {
-    throw InputError(
-        fmt::format("{} has no attribute '{}': give {} on the command line", snapshot, attribute, flag));
-  }
-  if (!(it->second > 0.0) || !std::isfinite(it->second)) {
-    throw InputError(fmt::format("{}: attribute '{}' = {} is not > 0: give {} on the command line", snapshot,
-                                 attribute, it->second, flag));
-  }
-  return it->second;
+  return value;
 }
 
 sph::KernelType parse_kernel(const std::string& name, const std::string& where) {
@@ -72,7 +51,7 @@ sph::KernelType parse_kernel(const std::string& name, const std::string& where) 
 
 // --boulders FILE.json: [{"name": "1", "initial_centre": [x, y, z], "material": 2}, or with
 // "ids": [..] or "id_range": [first, last] (inclusive) instead of "material"].
-std::vector<sph::BoulderSpec> read_boulders(const std::string& path) {
+std::vector<impact::BoulderSpec> read_boulders(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError("--boulders " + path + ": cannot open the file");
   nlohmann::json doc;
@@ -82,7 +61,7 @@ std::vector<sph::BoulderSpec> read_boulders(const std::string& path) {
     throw InputError("--boulders " + path + ": not valid JSON (" + e.what() + ")");
   }
   if (!doc.is_array()) throw InputError("--boulders " + path + ": must be a JSON array of boulder objects");
-  std::vector<sph::BoulderSpec> out;
+  std::vector<impact::BoulderSpec> out;
   for (std::size_t k = 0; k < doc.size(); ++k) {
     const auto& b = doc[k];
     const std::string where = fmt::format("--boulders {} entry {}", path, k);
@@ -94,7 +73,7 @@ std::vector<sph::BoulderSpec> read_boulders(const std::string& path) {
                          "' (allowed: name, initial_centre, material, ids, id_range)");
       }
     }
-    sph::BoulderSpec spec;
+    impact::BoulderSpec spec;
     try {
       spec.name = b.value("name", std::to_string(k + 1));
       const auto centre = b.at("initial_centre").get<std::vector<double>>();
@@ -124,63 +103,61 @@ std::vector<sph::BoulderSpec> read_boulders(const std::string& path) {
   return out;
 }
 
-void run_measure(const MeasureOptions& options) {
-  sph::RunAttributes attributes;
-  const sph::Particles particles = sph::read_snapshot(options.snapshot, &attributes);
-
-  sph::CraterMeasurementOptions m;
-  m.rho_initial = resolve_number(options.rho_initial, attributes, attribute_rho_initial, "--rho-initial",
-                                 options.snapshot);
-  m.particle_spacing =
-      resolve_number(options.spacing, attributes, attribute_spacing, "--spacing", options.snapshot);
-  // A graded target (docs/impact_setup.md "Graded resolution"): the measurement follows its local spacing,
-  // unless --spacing overrides the snapshot's resolution (then uniform at that spacing).
-  if (!options.spacing) {
-    const auto number = [&](const char* name) {
-      const auto it = attributes.numbers.find(name);
-      return it == attributes.numbers.end() ? 0.0 : it->second;
-    };
-    m.inner_spacing = number(attribute_inner_spacing);
-    m.inner_radius = number(attribute_inner_radius);
-    m.grading = number(attribute_grading);
+// The measurement of the run that wrote the snapshot (an impact's run record), or, for any other snapshot,
+// what the flags give.
+impact::CraterMeasurementOptions measurement_options(const MeasureOptions& options,
+                                                     const sph::RunAttributes& attributes) {
+  impact::CraterMeasurementOptions m;
+  if (impact::is_impact_run(attributes)) {
+    m = impact::crater_measurement_options(impact::read_run_record(attributes, options.snapshot));
   }
-  if (options.kernel) {
-    m.kernel = parse_kernel(*options.kernel, "--kernel");
-  } else if (const auto it = attributes.texts.find(attribute_kernel); it != attributes.texts.end()) {
-    m.kernel = parse_kernel(it->second, options.snapshot + ": attribute 'kernel'");
+  if (options.rho_initial) m.rho_initial = positive_flag(*options.rho_initial, "--rho-initial");
+  if (options.spacing) {
+    // The snapshot's resolution overridden: uniform at this spacing.
+    m.particle_spacing = positive_flag(*options.spacing, "--spacing");
+    m.inner_spacing = m.inner_radius = m.grading = 0.0;
   }
+  if (!(m.rho_initial > 0.0)) {
+    throw InputError(options.snapshot + " is not the snapshot of an impact run: give --rho-initial");
+  }
+  if (!(m.particle_spacing > 0.0)) {
+    throw InputError(options.snapshot + " is not the snapshot of an impact run: give --spacing");
+  }
+  if (options.kernel) m.kernel = parse_kernel(*options.kernel, "--kernel");
   if (!options.centre.empty()) {
     if (options.centre.size() != 2) throw InputError("--centre takes two numbers X Y (m)");
     m.centre = {options.centre[0], options.centre[1]};
   }
-  const auto symmetry = attributes.texts.find(attribute_symmetry);
-  m.quarter_symmetric =
-      options.quarter || (symmetry != attributes.texts.end() && symmetry->second == "quarter");
+  m.quarter_symmetric = m.quarter_symmetric || options.quarter;
   if (options.azimuths < 4 || options.azimuths % 4 != 0) {
     throw InputError(
         fmt::format("--azimuths {} is not allowed: must be a multiple of 4, >= 4", options.azimuths));
   }
   for (const auto& [flag, value] :
-       {std::pair{"--max-radius", options.max_radius}, std::pair{"--radial-step", options.radial_step},
-        std::pair{"--wall-depth", options.wall_depth}}) {
+       {std::pair{"--max-radius", options.max_radius.value_or(0.0)},
+        std::pair{"--radial-step", options.radial_step}, std::pair{"--wall-depth", options.wall_depth}}) {
     if (!(value >= 0.0) || !std::isfinite(value)) {
       throw InputError(fmt::format(
           "{} {} is not allowed: must be a finite number >= 0 (m; 0 selects the default)", flag, value));
     }
   }
-  m.max_radius = options.max_radius;
+  if (options.max_radius) m.max_radius = *options.max_radius;
   m.n_azimuths = options.azimuths;
   m.radial_step = options.radial_step;
   m.wall_depth = options.wall_depth;
   if (options.boulders) m.boulders = read_boulders(*options.boulders);
+  return m;
+}
 
-  const sph::CraterMeasurement result = sph::measure_crater(particles, m);
-  const std::filesystem::path directory = options.out ? std::filesystem::path(*options.out)
-                                                      : std::filesystem::path(options.snapshot).parent_path();
-  sph::write_crater_files(directory, result, attributes.time);
+void run_measure(const MeasureOptions& options) {
+  sph::RunAttributes attributes;
+  const sph::Particles particles = sph::read_snapshot(options.snapshot, &attributes);
+  const impact::CraterMeasurement result =
+      impact::measure_crater(particles, measurement_options(options, attributes));
+  if (options.out) impact::write_crater_files(*options.out, result, attributes.time);
 
   if (options.json) {
-    std::cout << sph::crater_json_text(result, attributes.time);
+    std::cout << impact::crater_json_text(result, attributes.time);
     return;
   }
   fmt::print("Crater of {} (t = {:.6g} s, {} particles, {} ejected)\n", options.snapshot, attributes.time,
@@ -196,8 +173,11 @@ void run_measure(const MeasureOptions& options) {
                b.displacement_magnitude, b.displacement[0], b.displacement[1], b.displacement[2]);
   }
   for (const auto& w : result.warnings) fmt::print("  warning: {}\n", w);
-  fmt::print("  wrote {} and {}\n", (directory / "crater.json").string(),
-             (directory / "crater_profile.csv").string());
+  if (options.out) {
+    const std::filesystem::path directory(*options.out);
+    fmt::print("  wrote {} and {}\n", (directory / "crater.json").string(),
+               (directory / "crater_profile.csv").string());
+  }
 }
 
 void add_measure_command(CLI::App& parent) {
@@ -207,30 +187,29 @@ void add_measure_command(CLI::App& parent) {
       "Measure the crater of an SPH snapshot (radius at the pre-impact level, depth, rim, profile)");
   sub->add_option("snapshot", options->snapshot, "Snapshot (HDF5) written by craterkit simulate")->required();
   sub->add_option("--rho-initial", options->rho_initial,
-                  "Initial bulk density of the target matrix, kg/m^3 (default: snapshot attribute "
-                  "initial_bulk_density)");
-  sub->add_option("--spacing", options->spacing,
-                  "Initial particle spacing, m (default: snapshot attribute particle_spacing; on a graded "
-                  "target the local spacing from inner_spacing, inner_radius and grading)");
+                  "Initial bulk density of the target matrix, kg/m^3 (default: the impact run's)");
+  sub->add_option(
+      "--spacing", options->spacing,
+      "Initial particle spacing, m; uniform (default: the impact run's, graded if its target was)");
   sub->add_option("--kernel", options->kernel,
-                  "cubic_spline or wendland_c2 (default: snapshot attribute kernel, else cubic_spline)");
+                  "cubic_spline or wendland_c2 (default: the impact run's, else cubic_spline)");
   sub->add_option("--centre", options->centre, "Impact point X Y on the pre-impact plane, m (default 0 0)")
       ->expected(2);
   sub->add_option("--max-radius", options->max_radius,
-                  "Outer end of the rays, m (default: target extent - 2 h - spacing)");
+                  "Outer end of the rays, m (default: the inner face of an impact run's fixed shell, else "
+                  "target extent - 2 h - spacing)");
   sub->add_option("--azimuths", options->azimuths, "Number of rays (multiple of 4; default 64)");
   sub->add_option("--radial-step", options->radial_step, "Radial sample step, m (default (local) spacing/4)");
   sub->add_option("--wall-depth", options->wall_depth,
                   "Depth below z = 0 that marks the crater wall, m (default one (local) spacing)");
-  sub->add_flag(
-      "--quarter", options->quarter,
-      "Quarter-domain run mirrored at x = 0 and y = 0 (default: snapshot attribute symmetry = quarter)");
+  sub->add_flag("--quarter", options->quarter,
+                "Quarter-domain run mirrored at x = 0 and y = 0 (default: the impact run's symmetry)");
   sub->add_option(
       "--boulders", options->boulders,
-      "JSON file: [{\"name\", \"initial_centre\": [x,y,z], \"material\" | \"ids\" | \"id_range\"}]");
+      "JSON file: [{\"name\", \"initial_centre\": [x,y,z], \"material\" | \"ids\" | \"id_range\"}] "
+      "(default: the impact run's boulders)");
   sub->add_option("--out", options->out,
-                  "Directory for crater.json and crater_profile.csv (default: the "
-                  "snapshot's directory)");
+                  "Write crater.json and crater_profile.csv into this directory (default: write nothing)");
   sub->add_flag("--json", options->json, "Print crater.json on stdout");
   sub->footer(
       "Method and file formats: docs/crater_measurement.md. Exit status 2 for bad input (the message "

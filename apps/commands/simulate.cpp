@@ -12,8 +12,9 @@
 
 #include "command_registry.hpp"
 #include "craterkit/common/input_error.hpp"
-#include "craterkit/sph/io/config.hpp"
-#include "craterkit/sph/solver/simulation.hpp"
+#include "craterkit/common/toml_table.hpp"
+#include "craterkit/impact/impact_run.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -33,7 +34,7 @@ nlohmann::json number_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
 }
 
-nlohmann::json summary_json(const sph::SimulationSummary& s) {
+nlohmann::json summary_json(const sph::RunSummary& s) {
   nlohmann::json phases = nlohmann::json::object();
   for (const auto& [name, seconds] : s.phase_seconds) phases[name] = seconds;
   nlohmann::json out = {{"name", s.name},
@@ -62,14 +63,7 @@ nlohmann::json summary_json(const sph::SimulationSummary& s) {
                          {"max_mach_at_transition", s.mach_at_transition},
                          {"max_mach_late_stage", s.late_stage_max_mach}};
   }
-  if (s.crater) {
-    out["crater_radius"] = number_or_null(s.crater->crater_radius);
-    out["crater_radius_uncertainty"] = number_or_null(s.crater->crater_radius_uncertainty);
-    out["crater_depth"] = number_or_null(s.crater->depth);
-    out["crater_growth_ended"] = s.crater_growth_ended;
-    out["crater_growth_end_time"] = number_or_null(s.crater_growth_end_time.value_or(NAN));
-    out["crater_growth_end_radius"] = number_or_null(s.crater_growth_end_radius.value_or(NAN));
-    out["crater_json"] = s.crater_json;
+  if (!s.ejecta_log.empty()) {
     out["ejected_particles"] = s.ejected_particles;
     out["ejected_mass"] = s.ejected_mass;
     out["ejecta_log"] = s.ejecta_log;
@@ -77,47 +71,64 @@ nlohmann::json summary_json(const sph::SimulationSummary& s) {
   return out;
 }
 
-void run_simulate(const SimulateOptions& options) {
-  if (options.threads < 0)
-    throw InputError("--threads " + std::to_string(options.threads) + ": must be >= 1");
-  if (options.resume && options.out.empty())
-    throw InputError("--resume needs --out DIR (where the checkpoint is)");
-  const sph::SimulationConfig config = sph::load_simulation_config(options.config);
-  if (options.threads > 0) omp_set_num_threads(options.threads);
-  if (options.dry_run) {
-    // The set-up only: what a run would simulate, to size it before it starts. Nothing is written.
-    const sph::Scenario scenario = sph::build_scenario(config);
-    const auto& p = scenario.problem.particles;
-    std::size_t fixed = 0;
-    for (const auto flag : p.flags) fixed += (flag & sph::particle_fixed) != 0 ? 1 : 0;
-    if (options.json) {
-      nlohmann::json out = {{"name", config.name},
-                            {"setup", sph::setup_name(config.setup)},
-                            {"particles", p.size()},
-                            {"fixed_particles", fixed},
-                            {"end_time", config.run.end_time}};
-      if (scenario.impact) {
-        out["target_particles"] = scenario.impact->target_particles;
-        out["projectile_particles"] = scenario.impact->projectile_particles;
-        out["t_transition"] = scenario.impact->transition_time;
-      }
-      std::cout << out.dump(2) << "\n";
-      return;
+nlohmann::json summary_json(const impact::ImpactRunSummary& s) {
+  nlohmann::json out = summary_json(s.run);
+  if (s.crater) {
+    out["crater_radius"] = number_or_null(s.crater->crater_radius);
+    out["crater_radius_uncertainty"] = number_or_null(s.crater->crater_radius_uncertainty);
+    out["crater_depth"] = number_or_null(s.crater->depth);
+  }
+  out["crater_growth_ended"] = s.crater_growth_ended;
+  out["crater_growth_end_time"] = number_or_null(s.crater_growth_end_time.value_or(NAN));
+  out["crater_growth_end_radius"] = number_or_null(s.crater_growth_end_radius.value_or(NAN));
+  out["crater_json"] = s.crater_json;
+  out["ejected_particles"] = s.run.ejected_particles;
+  out["ejected_mass"] = s.run.ejected_mass;
+  out["ejecta_log"] = s.run.ejecta_log;
+  return out;
+}
+
+// --dry-run: what a run would simulate, to size it before it starts. Nothing is written.
+void print_dry_run(const std::string& name, const std::string& setup, const sph::ProblemSetup& problem,
+                   double end_time, const impact::ImpactSummary* impact, bool json) {
+  const auto& p = problem.particles;
+  std::size_t fixed = 0;
+  for (const auto flag : p.flags) fixed += (flag & sph::particle_fixed) != 0 ? 1 : 0;
+  if (json) {
+    nlohmann::json out = {{"name", name},
+                          {"setup", setup},
+                          {"particles", p.size()},
+                          {"fixed_particles", fixed},
+                          {"end_time", end_time}};
+    if (impact != nullptr) {
+      out["target_particles"] = impact->target_particles;
+      out["projectile_particles"] = impact->projectile_particles;
+      out["t_transition"] = impact->transition_time;
     }
-    if (scenario.impact) fmt::print("{}", sph::describe_impact(*scenario.impact));
-    fmt::print("{} ({}): {} particles ({} fixed), end time {:.6g} s; dry run, nothing simulated or written\n",
-               config.name, sph::setup_name(config.setup), p.size(), fixed, config.run.end_time);
+    std::cout << out.dump(2) << "\n";
     return;
   }
-  sph::RunOptions run;
-  run.output_directory = options.out;
-  run.resume = options.resume;
-  run.progress = !options.quiet;
-  const auto summary = sph::run_simulation(config, run);
-  if (options.json) {
-    std::cout << summary_json(summary).dump(2) << "\n";
-    return;
+  if (impact != nullptr) fmt::print("{}", impact::describe_impact(*impact));
+  fmt::print("{} ({}): {} particles ({} fixed), end time {:.6g} s; dry run, nothing simulated or written\n",
+             name, setup, p.size(), fixed, end_time);
+}
+
+void print_crater(const impact::ImpactRunSummary& summary) {
+  if (!summary.crater) return;
+  fmt::print("  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m{}; ejected {} particles ({:.4g} kg)\n",
+             summary.crater->crater_radius, summary.crater->crater_radius_uncertainty, summary.crater->depth,
+             summary.crater_growth_ended ? " (crater growth ended)" : "", summary.run.ejected_particles,
+             summary.run.ejected_mass);
+  if (!summary.crater_growth_ended && summary.crater_growth_end_time) {
+    fmt::print(
+        "  crater growth ended at t = {:.6g} s (radius {:.4g} m then); the run went on to t = {:.6g} s\n",
+        *summary.crater_growth_end_time, *summary.crater_growth_end_radius, summary.run.time);
   }
+}
+
+// impact: the crater lines, for an impact run.
+void print_summary(const sph::RunSummary& summary, const std::string& out,
+                   const impact::ImpactRunSummary* impact = nullptr) {
   fmt::print("{} ({}): {} particles, {} steps to t = {:.6g} s in {:.3f} s wall on {} threads\n", summary.name,
              summary.setup, summary.particles, summary.steps, summary.time, summary.wall_seconds,
              summary.threads);
@@ -132,24 +143,57 @@ void run_simulate(const SimulateOptions& options) {
         "  planes act on the particles): it changed by {:.3e} of the particles' momentum\n",
         summary.relative_energy_error, summary.relative_momentum_error);
   }
-  if (summary.crater) {
-    fmt::print("  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m{}; ejected {} particles ({:.4g} kg)\n",
-               summary.crater->crater_radius, summary.crater->crater_radius_uncertainty,
-               summary.crater->depth, summary.crater_growth_ended ? " (crater growth ended)" : "",
-               summary.ejected_particles, summary.ejected_mass);
-    if (!summary.crater_growth_ended && summary.crater_growth_end_time) {
-      fmt::print(
-          "  crater growth ended at t = {:.6g} s (radius {:.4g} m then); the run went on to t = {:.6g} s\n",
-          *summary.crater_growth_end_time, *summary.crater_growth_end_radius, summary.time);
-    }
-  }
+  if (impact != nullptr) print_crater(*impact);
   if (summary.late_stage) {
     fmt::print("  late stage from t = {:.6g} s: largest Mach number {:.4g} at the switch, {:.4g} after\n",
                summary.transition_time, summary.mach_at_transition, summary.late_stage_max_mach);
   }
-  if (!summary.checkpoint.empty())
-    fmt::print("  output in {} (checkpoint {})\n", options.out, summary.checkpoint);
+  if (!summary.checkpoint.empty()) fmt::print("  output in {} (checkpoint {})\n", out, summary.checkpoint);
   fmt::print("{}", summary.phase_table);
+}
+
+void run_simulate(const SimulateOptions& options) {
+  if (options.threads < 0)
+    throw InputError("--threads " + std::to_string(options.threads) + ": must be >= 1");
+  if (options.resume && options.out.empty())
+    throw InputError("--resume needs --out DIR (where the checkpoint is)");
+  TomlTable root = TomlTable::parse_file(options.config);
+  std::vector<std::string> setups = sph::standard_problem_names();
+  setups.push_back("impact");
+  const std::string setup = sph::read_problem_setup(root, setups);
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  sph::RunOptions run;
+  run.output_directory = options.out;
+  run.resume = options.resume;
+  run.progress = !options.quiet;
+  if (setup == "impact") {
+    const impact::ImpactConfig config = impact::parse_impact_config(root);
+    if (options.dry_run) {
+      const impact::ImpactRun set_up = impact::build_impact_run(config);
+      print_dry_run(config.simulation.name, setup, set_up.problem, config.simulation.run.end_time,
+                    &set_up.summary, options.json);
+      return;
+    }
+    const auto summary = impact::run_impact(config, run);
+    if (options.json) {
+      std::cout << summary_json(summary).dump(2) << "\n";
+      return;
+    }
+    print_summary(summary.run, options.out, &summary);
+    return;
+  }
+  const sph::StandardProblemConfig config = sph::parse_standard_problem_config(root);
+  if (options.dry_run) {
+    print_dry_run(config.simulation.name, setup, sph::build_standard_problem(config),
+                  config.simulation.run.end_time, nullptr, options.json);
+    return;
+  }
+  const auto summary = sph::run_standard_problem(config, run);
+  if (options.json) {
+    std::cout << summary_json(summary).dump(2) << "\n";
+    return;
+  }
+  print_summary(summary, options.out);
 }
 
 void add_simulate_command(CLI::App& parent) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "craterkit/sph/run/standard_problems.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 
 using namespace craterkit::sph;
@@ -32,21 +33,20 @@ struct Measurement {
 Measurement measure(int per_side, int threads, int steps, const NeighbourSearchOptions& search,
                     DensityMethod density) {
   omp_set_num_threads(threads);
-  SimulationConfig config;
+  SolverParameters solver;
   SedovSetup setup;
   setup.particles_per_side = per_side;
   setup.blast_radius = 0.1;
-  config.setup = setup;
-  config.run.end_time = 0.05;
-  config.smoothing.max_smoothing_length = 0.1;
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
-  config.density = density;
-  config.neighbours.search = search;
-  Simulation sim(config, build_problem(config));
-  for (int k = 0; k < 2; ++k) sim.step(config.run.end_time);  // warm-up (first allocations)
+  const double end_time = 0.05;
+  solver.smoothing.max_smoothing_length = 0.1;
+  solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  solver.density = density;
+  solver.neighbours.search = search;
+  Simulation sim(solver, make_sedov(setup, solver.smoothing.eta, solver.viscosity.alpha));
+  for (int k = 0; k < 2; ++k) sim.step(end_time);  // warm-up (first allocations)
   sim.timers().reset();
   const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < steps; ++k) sim.step(config.run.end_time);
+  for (int k = 0; k < steps; ++k) sim.step(end_time);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Measurement m;
   m.seconds_per_step = wall / steps;

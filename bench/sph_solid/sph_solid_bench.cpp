@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/physics/material.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 
@@ -92,15 +93,15 @@ struct Measurement {
 
 Measurement measure(int per_side, int threads, int steps, bool solid, double artificial_stress) {
   omp_set_num_threads(threads);
-  SimulationConfig config;
-  config.run.end_time = 1.0;
-  if (solid) config.artificial_stress = artificial_stress;
-  Simulation sim(config, make_block(per_side, solid));
-  for (int k = 0; k < 2; ++k) sim.step(config.run.end_time);  // warm-up (first allocations)
+  SolverParameters solver;
+  const double end_time = 1.0;
+  if (solid) solver.artificial_stress = artificial_stress;
+  Simulation sim(solver, make_block(per_side, solid));
+  for (int k = 0; k < 2; ++k) sim.step(end_time);  // warm-up (first allocations)
   sim.timers().reset();
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = cpu_seconds();
-  for (int k = 0; k < steps; ++k) sim.step(config.run.end_time);
+  for (int k = 0; k < steps; ++k) sim.step(end_time);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Measurement m;
   m.seconds_per_step = wall / steps;

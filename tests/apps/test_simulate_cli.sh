@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Command-line contract of `craterkit simulate`: --dry-run reports the set-up of the shipped SCI example
-# (particle counts that tests/sph_core/test_graded_target.cpp also checks through the library) and writes
-# nothing; a bad key exits with status 2 and names the key, also with --dry-run; a run killed at a
-# checkpoint resumes to the crater of an uninterrupted run.
+# Command-line contract of `craterkit simulate` and `craterkit measure`: --dry-run reports the set-up of the
+# shipped SCI example (particle counts that tests/impact/test_graded_target.cpp also checks through the
+# library) and writes nothing; a bad key exits with status 2 and names the key, also with --dry-run; a run
+# killed at a checkpoint resumes to the crater of an uninterrupted run; `measure` on a run's last snapshot
+# gives the run's own crater and writes only where --out says.
 # Usage: test_simulate_cli.sh /path/to/craterkit /path/to/data
 set -u
 CK="$1"
@@ -37,7 +38,7 @@ status=$?
 [ "$status" -eq 2 ] || fail "a bad impact.grading exited $status, expected 2"
 grep -q "impact.grading" "$WORK/err" || fail "the error does not name impact.grading: $(cat "$WORK/err")"
 
-# Kill and resume (issue 6): the tiny impact of tests/sph_core/test_impact_run.cpp (2,144 particles, 1 s),
+# Kill and resume: the tiny impact of tests/impact/test_impact_run.cpp (2,144 particles, 1 s),
 # once uninterrupted and once killed with SIGKILL as soon as its first checkpoint exists, then resumed with
 # --resume: the resumed run ends with the same crater (crater.json), the same growth history and ejecta
 # as the uninterrupted one, bit for bit.
@@ -86,6 +87,20 @@ if kill -0 "$pid" 2>/dev/null; then
 else
   fail "the tiny impact ended before its first checkpoint could be killed"
 fi
+
+# measure: the run's last snapshot, measured with its run record, is the run's crater, byte for byte; without
+# --out nothing is written (the run's crater.json stays as it was).
+last=$(ls "$WORK/whole"/snap_*.h5 | tail -n 1)
+cp "$WORK/whole/crater.json" "$WORK/crater.before"
+touch -d '2000-01-01' "$WORK/whole/crater.json"
+"$CK" measure "$last" --json >"$WORK/measured.json" 2>"$WORK/err" || fail "measure exited $? ($(cat "$WORK/err"))"
+cmp -s "$WORK/measured.json" "$WORK/whole/crater.json" || fail "measure on the last snapshot differs from the run's crater.json"
+[ "$(stat -c %Y "$WORK/whole/crater.json")" = "$(date -d '2000-01-01' +%s)" ] ||
+  fail "measure without --out rewrote the run's crater.json"
+"$CK" measure "$last" --out "$WORK/measured" >/dev/null 2>"$WORK/err" || fail "measure --out exited $? ($(cat "$WORK/err"))"
+cmp -s "$WORK/measured/crater.json" "$WORK/whole/crater.json" || fail "measure --out DIR: crater.json differs from the run's"
+"$CK" measure "$last" --spacing -1 >/dev/null 2>"$WORK/err"
+[ "$?" -eq 2 ] && grep -q -- "--spacing" "$WORK/err" || fail "measure --spacing -1: no status-2 error naming the flag"
 
 [ "$failures" -eq 0 ] && echo "all simulate CLI checks passed"
 exit "$failures"

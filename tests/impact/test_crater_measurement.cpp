@@ -25,9 +25,11 @@
 
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/impact/crater_measurement.hpp"
+#include "craterkit/impact/impact_run.hpp"
 #include "craterkit/sph/particles/particles.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+using namespace sph;
 namespace {
 
 constexpr double dx = 0.5;      // m
@@ -617,4 +619,4 @@ TEST(CraterMeasurement, NoCraterIsReportedNotInvented) {
 }
 
 }  // namespace
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

@@ -13,18 +13,21 @@
 #include <variant>
 #include <vector>
 
+#include "craterkit/impact/impact_run.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 
 using namespace craterkit::sph;
+using namespace craterkit::impact;
 
 namespace {
 
 constexpr double g = 1.4e-4;  // m/s^2, Ryugu
 constexpr double R = 2.0;     // m, domain radius L (small: the fine particles set the time step)
 
-SimulationConfig target_config(double dx0, double dx_max, double grading, double inner_radius,
-                               double t_transition = 1e9) {
-  SimulationConfig config;
+ImpactConfig target_config(double dx0, double dx_max, double grading, double inner_radius,
+                           double t_transition = 1e9) {
+  ImpactConfig config;
+  config.simulation = SimulationConfig{};  // generic solver defaults: the test sets the impact ones it uses
   ImpactSetup setup;
   setup.domain_radius = R;
   setup.particle_spacing = dx_max;
@@ -32,18 +35,19 @@ SimulationConfig target_config(double dx0, double dx_max, double grading, double
   setup.grading = grading;
   setup.inner_radius = inner_radius;
   setup.transition_time = t_transition;  // default: no late-stage switch within the run
-  config.setup = setup;
-  config.run.gravity = {0.0, 0.0, -g};
-  config.run.end_time = 1e9;
-  config.time_step.velocity_change = 0.1;
-  config.time_step.energy_floor = 1e4;
-  config.neighbours.sort_interval = 0;  // keep the particle order: surface shifts compare by index
+  config.impact = setup;
+  config.simulation.solver.gravity = {0.0, 0.0, -g};
+  config.simulation.run.end_time = 1e9;
+  config.simulation.solver.time_step.velocity_change = 0.1;
+  config.simulation.solver.time_step.energy_floor = 1e4;
+  config.simulation.solver.neighbours.sort_interval =
+      0;  // keep the particle order: surface shifts compare by index
   return config;
 }
 
 // The scenario without the projectile (material 1).
-ProblemSetup target_only(const SimulationConfig& config) {
-  ProblemSetup problem = build_scenario(config).problem;
+ProblemSetup target_only(const ImpactConfig& config) {
+  ProblemSetup problem = build_impact_run(config).problem;
   Particles& p = problem.particles;
   std::vector<std::uint32_t> keep;
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -68,8 +72,8 @@ struct RestFigures {
 
 // Runs `crossings` sound-crossing times R / c after `start` (c: the largest particle sound speed then, the
 // longitudinal one with strength).
-RestFigures run_at_rest(const SimulationConfig& config, double start, double crossings) {
-  Simulation sim(config, target_only(config));
+RestFigures run_at_rest(const ImpactConfig& config, double start, double crossings) {
+  Simulation sim(config.simulation.solver, target_only(config));
   const auto& p = sim.particles();
   RestFigures f;
   f.particles = p.size();
@@ -100,9 +104,9 @@ RestFigures run_at_rest(const SimulationConfig& config, double start, double cro
   return f;
 }
 
-void expect_at_rest(const char* when, const SimulationConfig& config, double start) {
+void expect_at_rest(const char* when, const ImpactConfig& config, double start) {
   const RestFigures f = run_at_rest(config, start, 20.0);
-  const auto& s = std::get<ImpactSetup>(config.setup);
+  const auto& s = config.impact;
   const double free_fall = std::sqrt(g * R);
   std::printf(
       "%s: graded dx0 = %.3g, dx_max = %.3g, s = %.2f: %zu particles (%zu top), %llu steps over 20 L/c = "

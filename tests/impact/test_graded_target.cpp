@@ -27,22 +27,29 @@
 #include <tuple>
 #include <vector>
 
-#include <toml++/toml.h>
+#include "craterkit/common/toml_table.hpp"
 
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/impact/crater_measurement.hpp"
 #include "craterkit/impact/graded_target.hpp"
 #include "craterkit/impact/impact_config.hpp"
+#include "craterkit/impact/impact_run.hpp"
 #include "craterkit/impact/impact_setup.hpp"
-#include "craterkit/sph/particles/kernel.hpp"
 #include "craterkit/impact/lithostatic.hpp"
-#include "craterkit/sph/physics/material_response.hpp"
 #include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/particles/kernel.hpp"
+#include "craterkit/sph/physics/material_response.hpp"
 #include "craterkit/sph/physics/p_alpha.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+using namespace sph;
 namespace {
+
+// The run record of a set-up as snapshot attributes (impact_run_record.hpp).
+RunAttributes record_attributes(const ImpactSummary& summary, KernelType kernel) {
+  return run_record_attributes(make_run_record(summary, kernel, Particles{}, 0.0));
+}
 
 constexpr double pi = std::numbers::pi;
 constexpr double eta = 1.2;
@@ -519,8 +526,7 @@ TEST(GradedTarget, ProjectileAtTheCoreSpacing) {
 
 std::string parse_error(const std::string& text) {
   try {
-    const toml::table root = toml::parse(text);
-    (void)parse_impact_setup(*root["impact"].as_table(), "test.toml");
+    (void)parse_impact_setup(TomlTable::parse(text, "test.toml").table("impact"));
   } catch (const InputError& e) {
     return e.what();
   }
@@ -528,14 +534,16 @@ std::string parse_error(const std::string& text) {
 }
 
 TEST(GradedTarget, TomlKeysAndErrors) {
-  const toml::table root = toml::parse(
-      "[impact]\nparticle_spacing = 0.35\ninner_spacing = 0.028\ngrading = 0.1\ninner_radius = 0.3\n");
-  const ImpactSetup s = parse_impact_setup(*root["impact"].as_table(), "test.toml");
+  const ImpactSetup s = parse_impact_setup(
+      TomlTable::parse(
+          "[impact]\nparticle_spacing = 0.35\ninner_spacing = 0.028\ngrading = 0.1\ninner_radius = 0.3\n",
+          "test.toml")
+          .table("impact"));
   EXPECT_EQ(s.inner_spacing, 0.028);
   EXPECT_EQ(s.grading, 0.1);
   EXPECT_EQ(s.inner_radius, 0.3);
   // Defaults: the uniform lattice.
-  const ImpactSetup d = parse_impact_setup(*toml::parse("[impact]\n")["impact"].as_table(), "test.toml");
+  const ImpactSetup d = parse_impact_setup(TomlTable::parse("[impact]\n", "test.toml").table("impact"));
   EXPECT_EQ(d.inner_spacing, 0.0);
   EXPECT_FALSE(make_impact(small_uniform(), eta, 1.0, ryugu_gravity).summary.graded);
   EXPECT_NE(parse_error("[impact]\nparticle_spacing = 0.25\ninner_spacing = 0.25\n")
@@ -568,7 +576,7 @@ TEST(GradedTarget, TomlKeysAndErrors) {
 
 TEST(GradedTarget, AttributesAndDescription) {
   const ImpactScenario sc = make_impact(graded_setup(3.0, 0.25, 0.05, 0.06), eta, 1.0, ryugu_gravity);
-  const RunAttributes a = impact_run_attributes(sc.summary, KernelType::cubic_spline);
+  const RunAttributes a = record_attributes(sc.summary, KernelType::cubic_spline);
   EXPECT_EQ(a.numbers.at("particle_spacing"), 0.25);  // the outer spacing
   EXPECT_EQ(a.numbers.at("inner_spacing"), 0.05);
   EXPECT_EQ(a.numbers.at("grading"), 0.06);
@@ -577,8 +585,8 @@ TEST(GradedTarget, AttributesAndDescription) {
   EXPECT_NE(text.find("graded target: core dx0 = 0.05 m"), std::string::npos) << text;
   std::printf("%s", text.c_str());
   // The uniform lattice: inner_spacing = particle_spacing, grading 0.
-  const RunAttributes u = impact_run_attributes(make_impact(small_uniform(), eta, 1.0, ryugu_gravity).summary,
-                                                KernelType::cubic_spline);
+  const RunAttributes u = record_attributes(make_impact(small_uniform(), eta, 1.0, ryugu_gravity).summary,
+                                            KernelType::cubic_spline);
   EXPECT_EQ(u.numbers.at("inner_spacing"), 0.25);
   EXPECT_EQ(u.numbers.at("grading"), 0.0);
 }
@@ -744,9 +752,9 @@ TEST(GradedTarget, QuarterGradedCraterMeasuresAsTheFullOne) {
 
 ImpactSetup example_setup(const std::string& file) {
   const std::string path = data_file("examples/" + file).string();
-  const toml::table root = toml::parse_file(path);
-  EXPECT_EQ(root["problem"]["setup"].value_or(std::string()), "impact") << file;
-  return parse_impact_setup(*root["impact"].as_table(), path);
+  TomlTable root = TomlTable::parse_file(path);
+  EXPECT_EQ(root.table("problem").text("setup", ""), "impact") << file;
+  return parse_impact_setup(root.table("impact"));
 }
 
 // The graded SCI examples: the resolved 2 kg projectile at dx0 = 0.028 m (32 particles of 2700 kg/m^3) and
@@ -766,4 +774,4 @@ TEST(GradedTarget, SciGradedExamples) {
 }
 
 }  // namespace
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

@@ -16,18 +16,21 @@
 #include <set>
 #include <sstream>
 
+#include "craterkit/impact/crater_growth.hpp"
+#include "craterkit/impact/impact_run.hpp"
 #include "craterkit/sph/io/checkpoint.hpp"
 #include "craterkit/sph/io/config.hpp"
-#include "craterkit/impact/crater_growth.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 
 using namespace craterkit::sph;
+using namespace craterkit::impact;
 namespace fs = std::filesystem;
 
 namespace {
 
-SimulationConfig tiny_impact() {
-  SimulationConfig config;
+ImpactConfig tiny_impact() {
+  ImpactConfig config;
+  config.simulation = SimulationConfig{};  // generic solver defaults: the test sets the impact ones it uses
   ImpactSetup s;
   s.projectile_model = ProjectileModel::resolved;
   s.projectile_density = 1300.0;
@@ -37,21 +40,22 @@ SimulationConfig tiny_impact() {
   s.domain_radius = 5.0;
   s.particle_spacing = 0.5;
   s.transition_time = 0.01;  // s: 3 sound-crossing times of the domain
-  config.setup = s;
-  config.name = "tiny-impact";
-  config.run.end_time = 1.0;
-  config.run.gravity = {0.0, 0.0, -1.0};
-  config.time_step.velocity_change = 0.1;
-  config.time_step.energy_floor = s.impact_speed * s.impact_speed / 400.0;
-  config.smoothing.max_smoothing_length = 3.0 * config.smoothing.eta * s.particle_spacing;
+  config.impact = s;
+  config.simulation.name = "tiny-impact";
+  config.simulation.run.end_time = 1.0;
+  config.simulation.solver.gravity = {0.0, 0.0, -1.0};
+  config.simulation.solver.time_step.velocity_change = 0.1;
+  config.simulation.solver.time_step.energy_floor = s.impact_speed * s.impact_speed / 400.0;
+  config.simulation.solver.smoothing.max_smoothing_length =
+      3.0 * config.simulation.solver.smoothing.eta * s.particle_spacing;
   config.crater.check_interval = 0.1;
-  config.output.checkpoint_interval_seconds = 0;
+  config.simulation.output.checkpoint_interval_seconds = 0;
   // The impact defaults of a TOML configuration (config.cpp): Morris-Monaghan switch with the Balsara
   // limiter, block time steps.
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
-  config.viscosity.balsara = true;
-  config.time_step.block_levels = 8;
-  config.neighbours.search.skin = 0.1;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.simulation.solver.viscosity.balsara = true;
+  config.simulation.solver.time_step.block_levels = 8;
+  config.simulation.solver.neighbours.search.skin = 0.1;
   return config;
 }
 
@@ -86,23 +90,23 @@ TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater
   const auto config = tiny_impact();
   const auto dir = fs::temp_directory_path() / ("craterkit_tiny_impact_" + std::to_string(::getpid()));
   const RunOptions options = quiet_run_in(dir);
-  const auto summary = run_simulation(config, options);
+  const auto summary = run_impact(config, options);
   std::printf(
       "tiny impact: %llu steps to t = %.4g s in %.3g s wall, crater radius %.4g +- %.3g m, ejected %zu "
       "particles, Mach %.3g at the switch, %.3g after\n",
-      static_cast<unsigned long long>(summary.steps), summary.time, summary.wall_seconds,
+      static_cast<unsigned long long>(summary.run.steps), summary.run.time, summary.run.wall_seconds,
       summary.crater ? summary.crater->crater_radius : -1.0,
-      summary.crater ? summary.crater->crater_radius_uncertainty : -1.0, summary.ejected_particles,
-      summary.mach_at_transition, summary.late_stage_max_mach);
+      summary.crater ? summary.crater->crater_radius_uncertainty : -1.0, summary.run.ejected_particles,
+      summary.run.mach_at_transition, summary.run.late_stage_max_mach);
 
   // Late stage.
-  EXPECT_TRUE(summary.late_stage);
-  EXPECT_FALSE(summary.momentum_conserved);  // gravity, the fixed shell (and mirror planes) act
-  EXPECT_EQ(summary.transition_time, 0.01);
+  EXPECT_TRUE(summary.run.late_stage);
+  EXPECT_FALSE(summary.run.momentum_conserved);  // gravity, the fixed shell (and mirror planes) act
+  EXPECT_EQ(summary.run.transition_time, 0.01);
 
   // Mass: what is left in the particles plus what ejecta.csv recorded is the initial mass, and the rows
   // are exactly the particles flagged ejected.
-  const Scenario initial = build_scenario(config);
+  const ImpactRun initial = build_impact_run(config);
   double initial_mass = 0.0;
   for (double m : initial.problem.particles.mass) initial_mass += m;
   RunAttributes attributes;
@@ -127,9 +131,9 @@ TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater
     EXPECT_GT(std::sqrt(x * x + y * y + z * z), 5.0);
   }
   EXPECT_EQ(recorded, flagged);
-  EXPECT_EQ(summary.ejected_particles, flagged.size());
+  EXPECT_EQ(summary.run.ejected_particles, flagged.size());
   EXPECT_NEAR(remaining + ejected, initial_mass, 1e-14 * initial_mass);
-  EXPECT_NEAR(summary.ejected_mass, ejected, 1e-14 * initial_mass);
+  EXPECT_NEAR(summary.run.ejected_mass, ejected, 1e-14 * initial_mass);
 
   // End of growth, recomputed from crater_growth.csv.
   std::vector<CraterGrowthSample> samples;
@@ -138,7 +142,7 @@ TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater
   }
   ASSERT_GE(samples.size(), 8u);
   if (summary.crater_growth_ended) {
-    EXPECT_EQ(samples.back().time, summary.time);
+    EXPECT_EQ(samples.back().time, summary.run.time);
   }
   auto rule_holds = [&](std::size_t last) {  // the rule (the radius band of the window), written out again
     const double t = samples[last].time, R = samples[last].radius;
@@ -160,10 +164,10 @@ TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater
   EXPECT_EQ(rule_holds(samples.size() - 1), summary.crater_growth_ended);
   EXPECT_EQ(summary.crater_growth_end_time.has_value(), summary.crater_growth_ended);
   if (summary.crater_growth_ended) {
-    EXPECT_EQ(*summary.crater_growth_end_time, summary.time);
+    EXPECT_EQ(*summary.crater_growth_end_time, summary.run.time);
     EXPECT_EQ(*summary.crater_growth_end_radius, samples.back().radius);
   }
-  EXPECT_EQ(summary.crater_growth_ended, summary.time < config.run.end_time);
+  EXPECT_EQ(summary.crater_growth_ended, summary.run.time < config.simulation.run.end_time);
   // The kinetic energy sampled at t = 0 is the projectile's, m U^2 / 2.
   EXPECT_NEAR(samples.front().kinetic_energy, 0.5 * 5450.0 * 50.0 * 50.0,
               1e-9 * samples.front().kinetic_energy);
@@ -193,10 +197,10 @@ TEST(ImpactRun, TinyImpactSwitchesConservesMassDecidesGrowthAndMeasuresTheCrater
 // stress divergence, gradient_correction.hpp; before it the crest stayed inside to 1 s).
 TEST(ImpactRun, TinyImpactOpensACraterWiderThanTwoSpacings) {
   auto config = tiny_impact();
-  config.run.end_time = 0.8;
+  config.simulation.run.end_time = 0.8;
   const auto dir = fs::temp_directory_path() / ("craterkit_tiny_crater_" + std::to_string(::getpid()));
   const RunOptions options = quiet_run_in(dir);
-  run_simulation(config, options);
+  run_impact(config, options);
   std::size_t checks = 0;
   for (const auto& row : read_csv(dir / "crater_growth.csv")) {
     const double time = std::stod(row[0]), radius = std::stod(row[2]);
@@ -218,16 +222,16 @@ TEST(ImpactRun, TinyImpactOpensACraterWiderThanTwoSpacings) {
 TEST(ImpactRun, GradedStandInGoesThroughTheContactWithItsEnergyKept) {
   const char* data = std::getenv("CRATERKIT_DATA_DIR");
   ASSERT_NE(data, nullptr);
-  auto config = load_simulation_config(fs::path(data) / "examples" / "sci-graded-stand-in.toml");
-  config.run.end_time = 3e-4;
-  config.output.snapshot_times.clear();
-  config.output.checkpoint_interval_seconds = 0;
+  auto config = load_impact_config(fs::path(data) / "examples" / "sci-graded-stand-in.toml");
+  config.simulation.run.end_time = 3e-4;
+  config.simulation.output.snapshot_times.clear();
+  config.simulation.output.checkpoint_interval_seconds = 0;
   const auto dir = fs::temp_directory_path() / ("craterkit_stand_in_" + std::to_string(::getpid()));
   const RunOptions options = quiet_run_in(dir);
-  const auto summary = run_simulation(config, options);
+  const auto summary = run_impact(config, options);
   std::printf("graded stand-in to 0.3 ms: %llu blocks, relative energy error %.3g\n",
-              static_cast<unsigned long long>(summary.steps), summary.relative_energy_error);
-  EXPECT_DOUBLE_EQ(summary.time, 3e-4);
-  EXPECT_LT(summary.relative_energy_error, 1e-2);
+              static_cast<unsigned long long>(summary.run.steps), summary.run.relative_energy_error);
+  EXPECT_DOUBLE_EQ(summary.run.time, 3e-4);
+  EXPECT_LT(summary.run.relative_energy_error, 1e-2);
   fs::remove_all(dir);
 }

@@ -22,17 +22,25 @@
 #include <string>
 #include <vector>
 
-#include <toml++/toml.h>
+#include "craterkit/common/toml_table.hpp"
 
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/impact/impact_config.hpp"
+#include "craterkit/impact/impact_run.hpp"
 #include "craterkit/impact/impact_setup.hpp"
 #include "craterkit/impact/lithostatic.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/physics/material_response.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+using namespace sph;
 namespace {
+
+// The run record of a set-up as snapshot attributes (impact_run_record.hpp).
+RunAttributes record_attributes(const ImpactSummary& summary, KernelType kernel) {
+  return run_record_attributes(make_run_record(summary, kernel, Particles{}, 0.0));
+}
 
 constexpr double pi = std::numbers::pi;
 constexpr double eta = 1.2;
@@ -353,7 +361,7 @@ TEST(ImpactSetup, QuarterSymmetryIsAQuarterOfTheFullDomain) {
     if (q.material[i] == 1) mass += q.mass[i];
   }
   EXPECT_NEAR(4.0 * mass, quarter.summary.model_mass, 1e-12);
-  EXPECT_EQ(impact_run_attributes(quarter.summary, KernelType::cubic_spline).texts.at("symmetry"), "quarter");
+  EXPECT_EQ(record_attributes(quarter.summary, KernelType::cubic_spline).texts.at("symmetry"), "quarter");
   // The planes x = 0 and y = 0 are mirror planes of the quarter's box, and only of the quarter's.
   const Box& box = quarter.problem.box;
   EXPECT_TRUE(box.mirror[0] && box.mirror[1] && !box.mirror[2]);
@@ -395,20 +403,29 @@ TEST(ImpactSetup, SphereBoulderHoldsTheRightParticles) {
     if (p.material[i] == 1) continue;
     EXPECT_NEAR(p.pressure[i], 1300.0 * 1.4e-4 * (-p.z[i]), 4.0 * eos_resolution);
   }
-  const auto specs = impact_boulder_specs(p, sc.summary);
+  // The run record tracks the boulder by its material id, from its mass-weighted centre at t = 0.
+  const auto record = make_run_record(sc.summary, KernelType::cubic_spline, p, 0.0);
+  ASSERT_EQ(record.boulders.size(), 1u);
+  EXPECT_NEAR(record.boulders[0].initial_centre[0], 0.4, 0.02);
+  EXPECT_NEAR(record.boulders[0].initial_centre[2], -1.5, 0.02);
+  EXPECT_EQ(record.boulders[0].material, 2);
+  const auto specs = crater_measurement_options(record).boulders;
   ASSERT_EQ(specs.size(), 1u);
-  EXPECT_EQ(specs[0].ids.size(), n);
-  EXPECT_NEAR(specs[0].initial_centre[0], 0.4, 0.02);
-  EXPECT_NEAR(specs[0].initial_centre[2], -1.5, 0.02);
   EXPECT_EQ(specs[0].material, 2);
+  EXPECT_EQ(specs[0].initial_centre, record.boulders[0].initial_centre);
+  // Through the snapshot attributes and back, exactly.
+  const auto back = read_run_record(run_record_attributes(record), "test");
+  ASSERT_EQ(back.boulders.size(), 1u);
+  EXPECT_EQ(back.boulders[0].name, record.boulders[0].name);
+  EXPECT_EQ(back.boulders[0].initial_centre, record.boulders[0].initial_centre);
 }
 
 // The [impact] table of a shipped example.
 ImpactSetup example_setup(const std::string& file) {
   const std::string path = data_file("examples/" + file).string();
-  const toml::table root = toml::parse_file(path);
-  EXPECT_EQ(root["problem"]["setup"].value_or(std::string()), "impact") << file;
-  return parse_impact_setup(*root["impact"].as_table(), path);
+  TomlTable root = TomlTable::parse_file(path);
+  EXPECT_EQ(root.table("problem").text("setup", ""), "impact") << file;
+  return parse_impact_setup(root.table("impact"));
 }
 
 TEST(ImpactSetup, PhysicsMdBouldersFromTheExample) {
@@ -464,13 +481,13 @@ TEST(ImpactSetup, PhysicsMdBouldersFromTheExample) {
   bool above = false;
   for (std::size_t i = 0; i < p.size(); ++i) above = above || (p.material[i] == 4 && p.z[i] > 0.0);
   EXPECT_TRUE(above);
-  const RunAttributes attributes = impact_run_attributes(sc.summary, KernelType::cubic_spline);
+  const RunAttributes attributes = record_attributes(sc.summary, KernelType::cubic_spline);
   EXPECT_EQ(attributes.numbers.at("boulder_4_material"), 5.0);
 }
 
 TEST(ImpactSetup, RunAttributesForTheMeasurement) {
   const ImpactScenario sc = make_impact(small_target(3.0, 0.25), eta, 1.0, ryugu_gravity);
-  const RunAttributes a = impact_run_attributes(sc.summary, KernelType::wendland_c2);
+  const RunAttributes a = record_attributes(sc.summary, KernelType::wendland_c2);
   EXPECT_EQ(a.numbers.at("initial_bulk_density"), 1300.0);
   EXPECT_EQ(a.numbers.at("particle_spacing"), 0.25);
   EXPECT_EQ(a.texts.at("kernel"), "wendland_c2");
@@ -497,8 +514,7 @@ TEST(ImpactSetup, RunAttributesForTheMeasurement) {
 
 std::string parse_error(const std::string& text) {
   try {
-    const toml::table root = toml::parse(text);
-    (void)parse_impact_setup(*root["impact"].as_table(), "test.toml");
+    (void)parse_impact_setup(TomlTable::parse(text, "test.toml").table("impact"));
   } catch (const InputError& e) {
     return e.what();
   }
@@ -587,4 +603,4 @@ TEST(ImpactSetup, ShippedExamplesParse) {
 }
 
 }  // namespace
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "craterkit/sph/io/conservation_log.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 #include "support/sedov.hpp"
 
@@ -32,17 +33,17 @@ inline SedovMeasurement run_sedov(
     int particles_per_side, craterkit::sph::DensityMethod density = craterkit::sph::DensityMethod::summation,
     int block_levels = 0) {
   using namespace craterkit::sph;
-  SimulationConfig config;
+  StandardProblemConfig config;
   SedovSetup setup;
   setup.particles_per_side = particles_per_side;
   setup.blast_radius = 0.1;  // uniform deposit, as data/examples/sedov.toml
-  config.setup = setup;
-  config.run.end_time = 0.05;
-  config.smoothing.max_smoothing_length = 0.1;
-  config.density = density;
-  config.time_step.block_levels = block_levels;
-  if (block_levels > 0) config.neighbours.search.skin = 0.1;
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.problem = setup;
+  config.simulation.run.end_time = 0.05;
+  config.simulation.solver.smoothing.max_smoothing_length = 0.1;
+  config.simulation.solver.density = density;
+  config.simulation.solver.time_step.block_levels = block_levels;
+  if (block_levels > 0) config.simulation.solver.neighbours.search.skin = 0.1;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
   auto sim = run_to(config, 0.05);
   const auto& p = sim.particles();
   const craterkit::test_support::SedovSolution sedov(5.0 / 3.0);

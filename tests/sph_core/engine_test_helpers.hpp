@@ -6,13 +6,13 @@
 #include <string_view>
 #include <type_traits>
 
-#include "craterkit/sph/io/config.hpp"
-#include "craterkit/sph/solver/simulation.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 
 namespace engine_test {
 
-inline craterkit::sph::Simulation run_to(const craterkit::sph::SimulationConfig& config, double end_time) {
-  craterkit::sph::Simulation sim(config, craterkit::sph::build_problem(config));
+inline craterkit::sph::Simulation run_to(const craterkit::sph::StandardProblemConfig& config,
+                                         double end_time) {
+  craterkit::sph::Simulation sim(config.simulation.solver, craterkit::sph::build_standard_problem(config));
   while (sim.time() < end_time) sim.step(end_time);
   return sim;
 }

@@ -53,8 +53,8 @@ inline void write_profile(const Deposit& d, const std::string& name, const std::
 inline Deposit run_block(const BlockSetup& s, double end_time_units,
                          double drag_time_units = std::numeric_limits<double>::infinity()) {
   const auto start = std::chrono::steady_clock::now();
-  const SimulationConfig config = block_config(s);
-  Simulation sim(config, make_block(s, config));
+  const StandardProblemConfig config = block_config(s);
+  Simulation sim(config.simulation.solver, make_block(s, config));
   const double end_time = end_time_units * free_fall_time(s);
   const bool verbose = std::getenv("GRANULAR_VERBOSE") != nullptr;
   double next_report = 0.0;
@@ -115,8 +115,8 @@ inline Tilt tilt_until_flow(double friction, int depth_cells) {
   s.slope_degrees = std::round(2.0 * (repose_angle_degrees(friction) - 8.0)) / 2.0;
   const double hold = 2.0 * std::sqrt(layer_depth(s) / s.gravity);
   const double unit = std::sqrt(s.gravity * layer_depth(s));
-  SimulationConfig config = slope_config(s);
-  auto sim = std::make_unique<Simulation>(config, make_slope(s, config));
+  StandardProblemConfig config = slope_config(s);
+  auto sim = std::make_unique<Simulation>(config.simulation.solver, make_slope(s, config));
   Tilt tilt{NAN, {}, {}};
   // Settle: the continuum state rings the layer for a few sqrt(D/g) (see above); 8 degrees below
   // theta(f) the ringing cannot reach the yield stress.
@@ -140,8 +140,8 @@ inline Tilt tilt_until_flow(double friction, int depth_cells) {
     }
     s.slope_degrees += 0.5;
     config = slope_config(s);
-    auto next =
-        std::make_unique<Simulation>(config, make_slope(s, config), sim->particles(), sim->attributes());
+    auto next = std::make_unique<Simulation>(config.simulation.solver, make_slope(s, config),
+                                             sim->particles(), sim->state());
     sim = std::move(next);
   }
   return tilt;

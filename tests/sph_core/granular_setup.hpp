@@ -21,8 +21,7 @@
 #include <numbers>
 #include <vector>
 
-#include "craterkit/sph/io/config.hpp"
-#include "craterkit/sph/solver/simulation.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/solid_test_setups.hpp"
 
 namespace granular_test {
@@ -82,19 +81,21 @@ inline Material block_material(const BlockSetup& s) {
 // to 0.1 in shear flow: with alpha = 1 the artificial viscosity ~ alpha c h/10 would make the collapse
 // flow at a Reynolds number of ~20), h following the density only (no steering at free surfaces), and
 // h capped so that the periodic width holds the interaction range.
-inline SimulationConfig block_config(const BlockSetup& s) {
-  SimulationConfig config;
-  config.run.gravity = {0.0, 0.0, -s.gravity};
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
-  config.smoothing.neighbour_band = 1.0;
-  config.smoothing.max_smoothing_length = 1.3 * config.smoothing.eta * s.spacing;
+inline StandardProblemConfig block_config(const BlockSetup& s) {
+  StandardProblemConfig config;
+  config.simulation.solver.gravity = {0.0, 0.0, -s.gravity};
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.simulation.solver.smoothing.neighbour_band = 1.0;
+  config.simulation.solver.smoothing.max_smoothing_length =
+      1.3 * config.simulation.solver.smoothing.eta * s.spacing;
   return config;
 }
 
-inline ProblemSetup make_block(const BlockSetup& s, const SimulationConfig& config) {
+inline ProblemSetup make_block(const BlockSetup& s, const StandardProblemConfig& config) {
   const double dx = s.spacing, rho0 = s.density, g = s.gravity, H = block_height(s);
   const double K = bulk_modulus(s);
-  const double eta = config.smoothing.eta, alpha = config.viscosity.alpha_min;
+  const double eta = config.simulation.solver.smoothing.eta,
+               alpha = config.simulation.solver.viscosity.alpha_min;
   ProblemSetup problem;
   problem.materials = {block_material(s)};
   problem.materials.push_back(wall_material(s.density, K, s.poisson_ratio));
@@ -269,22 +270,24 @@ inline double layer_depth(const SlopeSetup& s) {
   return s.depth_cells * s.spacing;
 }
 
-inline SimulationConfig slope_config(const SlopeSetup& s) {
-  SimulationConfig config;
+inline StandardProblemConfig slope_config(const SlopeSetup& s) {
+  StandardProblemConfig config;
   const double beta = s.slope_degrees * std::numbers::pi / 180.0;
-  config.run.gravity = {s.gravity * std::sin(beta), 0.0, -s.gravity * std::cos(beta)};
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
-  config.smoothing.neighbour_band = 1.0;
-  config.smoothing.max_smoothing_length = 1.3 * config.smoothing.eta * s.spacing;
+  config.simulation.solver.gravity = {s.gravity * std::sin(beta), 0.0, -s.gravity * std::cos(beta)};
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.simulation.solver.smoothing.neighbour_band = 1.0;
+  config.simulation.solver.smoothing.max_smoothing_length =
+      1.3 * config.simulation.solver.smoothing.eta * s.spacing;
   return config;
 }
 
-inline ProblemSetup make_slope(const SlopeSetup& s, const SimulationConfig& config) {
+inline ProblemSetup make_slope(const SlopeSetup& s, const StandardProblemConfig& config) {
   const double dx = s.spacing, rho0 = s.density, g = s.gravity, D = layer_depth(s);
   const double c = s.sound_speed_factor * std::sqrt(g * D);
   const double K = rho0 * c * c;
   const double beta = s.slope_degrees * std::numbers::pi / 180.0;
-  const double eta = config.smoothing.eta, alpha = config.viscosity.alpha_min;
+  const double eta = config.simulation.solver.smoothing.eta,
+               alpha = config.simulation.solver.viscosity.alpha_min;
   ProblemSetup problem;
   problem.materials = {solid_test::granular_material(rho0, K, s.poisson_ratio, s.friction, 0.0),
                        wall_material(rho0, K, s.poisson_ratio)};

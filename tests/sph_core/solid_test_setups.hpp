@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "craterkit/sph/physics/material.hpp"
-#include "craterkit/sph/run/setups.hpp"
+#include "craterkit/sph/run/standard_problems.hpp"
 
 namespace solid_test {
 

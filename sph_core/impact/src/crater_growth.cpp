@@ -3,7 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+
+using namespace sph;
+
+CraterGrowthCriteria growth_criteria(const CraterGrowthParameters& p) {
+  CraterGrowthCriteria criteria;
+  criteria.radius_tolerance = p.radius_tolerance;
+  criteria.kinetic_energy_fraction = p.kinetic_energy_fraction;
+  criteria.window_fraction = p.window_fraction;
+  return criteria;
+}
 
 bool crater_growth_ended(std::span<const CraterGrowthSample> samples, const CraterGrowthCriteria& c) {
   if (samples.empty()) return false;
@@ -51,4 +61,4 @@ double moving_kinetic_energy(const Particles& p) {
   return sum;
 }
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

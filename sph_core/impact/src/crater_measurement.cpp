@@ -17,7 +17,9 @@
 #include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+
+using namespace sph;
 namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
@@ -735,4 +737,4 @@ void write_crater_files(const std::filesystem::path& directory, const CraterMeas
   write_text_atomically(directory / "crater_profile.csv", crater_profile_csv_text(m));
 }
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

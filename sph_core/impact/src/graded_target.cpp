@@ -9,10 +9,12 @@
 #include <stdexcept>
 #include <string>
 
-#include "craterkit/sph/particles/kernel.hpp"
 #include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/particles/kernel.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+
+using namespace sph;
 
 namespace {
 
@@ -234,4 +236,4 @@ std::size_t graded_point_count(const GradedLayout& layout) {
   return n;
 }
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

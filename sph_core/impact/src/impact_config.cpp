@@ -8,17 +8,19 @@
 #include <sstream>
 #include <vector>
 
+#include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
-#include "toml_keys.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+
+using namespace sph;
 
 namespace {
 
 constexpr double inf = std::numeric_limits<double>::infinity();
 
 // One shape primitive from a table holding `shape` and its keys (the other keys of `t` are the caller's).
-ShapePart parse_part(TomlKeys& t) {
+ShapePart parse_part(TomlTable& t) {
   const std::string shape = t.text("shape", "", {"sphere", "cylinder", "half_space", "box"});
   if (shape.empty()) t.fail("shape", "missing: one of \"sphere\", \"cylinder\", \"half_space\", \"box\"");
   if (shape == "sphere") {
@@ -62,9 +64,7 @@ ShapePart parse_part(TomlKeys& t) {
   return b;
 }
 
-ImpactBoulder parse_boulder(const toml::table& table, std::size_t index, const std::string& source) {
-  const std::string name = "impact.boulders[" + std::to_string(index) + "]";
-  TomlKeys t(&table, name, source);
+ImpactBoulder parse_boulder(TomlTable t, std::size_t index) {
   ImpactBoulder b;
   b.name = t.text("name", std::to_string(index + 1));
   for (char ch : b.name) {
@@ -73,18 +73,13 @@ ImpactBoulder parse_boulder(const toml::table& table, std::size_t index, const s
     }
   }
   b.material = t.text("material", b.material);
-  const toml::node* parts = t.find("parts");
-  if (parts != nullptr) {
-    if (table.get("shape") != nullptr) t.fail("shape", "give either shape or parts, not both");
-    const toml::array* array = parts->as_array();
-    if (array == nullptr || array->empty())
-      t.fail("parts", "expected a non-empty array of tables ([[...parts]])");
-    for (std::size_t j = 0; j < array->size(); ++j) {
-      const toml::table* part = array->get(j)->as_table();
-      if (part == nullptr) t.fail("parts", "element " + std::to_string(j) + " is not a table");
-      TomlKeys pt(part, name + ".parts[" + std::to_string(j) + "]", source);
-      b.shape.parts.push_back(parse_part(pt));
-      pt.finish();
+  if (t.contains("parts")) {
+    if (t.contains("shape")) t.fail("shape", "give either shape or parts, not both");
+    std::vector<TomlTable> parts = t.tables("parts");
+    if (parts.empty()) t.fail("parts", "expected a non-empty array of tables ([[...parts]])");
+    for (auto& part : parts) {
+      b.shape.parts.push_back(parse_part(part));
+      part.finish();
     }
   } else {
     b.shape.parts.push_back(parse_part(t));
@@ -95,8 +90,7 @@ ImpactBoulder parse_boulder(const toml::table& table, std::size_t index, const s
 
 }  // namespace
 
-ImpactSetup parse_impact_setup(const toml::table& impact, const std::string& source) {
-  TomlKeys t(&impact, "impact", source);
+ImpactSetup parse_impact_setup(TomlTable t) {
   ImpactSetup s;
   s.target_material = t.text("target_material", s.target_material);
   s.projectile_material = t.text("projectile_material", s.projectile_material);
@@ -143,18 +137,12 @@ ImpactSetup parse_impact_setup(const toml::table& impact, const std::string& sou
   s.transition_time = t.number("t_transition", s.transition_time, 0.0, inf);
   s.low_sound_speed_modulus = t.number("A_low", s.low_sound_speed_modulus, 0.0, inf, true);
   s.escape_speed = t.number("escape_speed", s.escape_speed, 0.0, inf);
-  if (const toml::node* boulders = t.find("boulders")) {
-    const toml::array* array = boulders->as_array();
-    if (array == nullptr) t.fail("boulders", "expected an array of tables ([[impact.boulders]])");
-    std::set<std::string> names;
-    for (std::size_t i = 0; i < array->size(); ++i) {
-      const toml::table* table = array->get(i)->as_table();
-      if (table == nullptr) t.fail("boulders", "element " + std::to_string(i) + " is not a table");
-      s.boulders.push_back(parse_boulder(*table, i, source));
-      if (!names.insert(s.boulders.back().name).second) {
-        throw InputError(source + ": impact.boulders[" + std::to_string(i) + "].name: \"" +
-                         s.boulders.back().name + "\" used twice");
-      }
+  std::set<std::string> names;
+  for (auto& table : t.tables("boulders")) {
+    s.boulders.push_back(parse_boulder(table, s.boulders.size()));
+    if (!names.insert(s.boulders.back().name).second) {
+      throw InputError(t.source() + ": " + table.name() + ".name: \"" + s.boulders.back().name +
+                       "\" used twice");
     }
   }
   if (s.symmetry == DomainSymmetry::quarter && s.impact_angle != 0.0) {
@@ -167,4 +155,50 @@ ImpactSetup parse_impact_setup(const toml::table& impact, const std::string& sou
   return s;
 }
 
-}  // namespace craterkit::sph
+sph::SimulationConfig impact_simulation_defaults(const ImpactSetup& impact) {
+  sph::SimulationConfig c;
+  c.solver.smoothing.max_smoothing_ratio = 3.0;
+  c.solver.viscosity.viscosity_switch = sph::ViscositySwitch::morris_monaghan;
+  c.solver.viscosity.balsara = true;
+  c.solver.time_step.energy_floor = impact.impact_speed * impact.impact_speed / 400.0;
+  c.solver.time_step.velocity_change = 0.1;
+  c.solver.time_step.block_levels = 8;
+  return c;
+}
+
+ImpactConfig parse_impact_config(TomlTable& root) {
+  (void)sph::read_problem_setup(root, {"impact"});
+  ImpactConfig c;
+  c.impact = parse_impact_setup(root.table("impact"));
+  if (root.contains("late_stage")) {
+    throw InputError(root.source() +
+                     ": table [late_stage] given but problem.setup = \"impact\": use impact.t_transition "
+                     "and impact.A_low");
+  }
+  {
+    TomlTable s = root.table("crater");
+    auto& k = c.crater;
+    k.check_interval = s.number("check_interval", k.check_interval, 0.0, inf);
+    k.radius_tolerance = s.number("radius_tolerance", k.radius_tolerance, 0.0, 1.0, true);
+    k.kinetic_energy_fraction =
+        s.number("kinetic_energy_fraction", k.kinetic_energy_fraction, 0.0, 1.0, true);
+    k.window_fraction = s.number("window_fraction", k.window_fraction, 0.0, 1.0, true);
+    k.stop_when_grown = s.boolean("stop_when_grown", k.stop_when_grown);
+    s.finish();
+  }
+  c.simulation = sph::parse_simulation_config(root, impact_simulation_defaults(c.impact));
+  root.finish();
+  return c;
+}
+
+ImpactConfig parse_impact_config(const std::string& toml_text, const std::string& source) {
+  TomlTable root = TomlTable::parse(toml_text, source);
+  return parse_impact_config(root);
+}
+
+ImpactConfig load_impact_config(const std::filesystem::path& path) {
+  TomlTable root = TomlTable::parse_file(path);
+  return parse_impact_config(root);
+}
+
+}  // namespace craterkit::impact

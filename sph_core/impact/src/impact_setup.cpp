@@ -1,4 +1,5 @@
 #include "craterkit/impact/impact_setup.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +16,9 @@
 #include "craterkit/impact/lithostatic.hpp"
 #include "craterkit/sph/physics/material_response.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+
+using namespace sph;
 
 namespace {
 
@@ -598,53 +601,6 @@ ImpactScenario make_impact(const ImpactSetup& s, double eta, double alpha,
   return scenario;
 }
 
-RunAttributes impact_run_attributes(const ImpactSummary& s, KernelType kernel) {
-  RunAttributes out;
-  out.numbers["initial_bulk_density"] = s.initial_bulk_density;
-  out.numbers["particle_spacing"] = s.particle_spacing;
-  // Graded resolution (the crater measurement's local spacing, graded_spacing.hpp): uniform lattice
-  // inner_spacing = particle_spacing, grading = 0.
-  out.numbers["inner_spacing"] = s.inner_spacing;
-  out.numbers["grading"] = s.grading;
-  out.numbers["inner_radius"] = s.inner_radius;
-  out.numbers["t_transition"] = s.transition_time;
-  out.numbers["A_low"] = s.low_sound_speed_modulus;
-  out.numbers["escape_speed"] = s.escape_speed;
-  out.numbers["projectile_radius"] = s.projectile_radius;
-  out.numbers["projectile_mass"] = s.projectile_mass;
-  out.numbers["projectile_density"] = s.projectile_density;
-  out.numbers["impact_speed"] = s.impact_speed;
-  out.numbers["impact_angle"] = s.impact_angle;
-  out.numbers["coupling_exponent"] = s.coupling_exponent;
-  out.numbers["stand_in_radius"] = s.model_radius;
-  out.numbers["stand_in_density"] = s.model_density;
-  out.numbers["stand_in_mass"] = s.model_mass;
-  out.numbers["stand_in_density_scale"] = s.model_density_scale;
-  out.numbers["domain_radius"] = s.domain_radius;
-  out.numbers["fixed_shell_thickness"] = s.fixed_shell_thickness;
-  out.numbers["gravity"] = s.gravity;
-  out.numbers["initial_sound_speed"] = s.initial_sound_speed;
-  for (std::size_t b = 0; b < s.boulder_names.size(); ++b) {
-    out.numbers["boulder_" + s.boulder_names[b] + "_material"] = s.boulder_material_ids[b];
-  }
-  out.texts["kernel"] = std::string(kernel_name(kernel));
-  out.texts["symmetry"] = symmetry_name(s.symmetry);
-  out.texts["projectile_model"] = projectile_model_name(s.model);
-  return out;
-}
-
-std::vector<BoulderSpec> impact_boulder_specs(const Particles& initial, const ImpactSummary& s) {
-  std::vector<BoulderSpec> out;
-  for (std::size_t b = 0; b < s.boulder_names.size(); ++b) {
-    const std::uint16_t id = s.boulder_material_ids[b];
-    BoulderSpec spec = boulder_from_particles(initial, s.boulder_names[b],
-                                              [&](std::size_t i) { return initial.material[i] == id; });
-    spec.material = id;
-    out.push_back(std::move(spec));
-  }
-  return out;
-}
-
 std::string describe_impact(const ImpactSummary& s) {
   std::ostringstream o;
   o.precision(4);
@@ -696,4 +652,4 @@ std::string describe_impact(const ImpactSummary& s) {
   return o.str();
 }
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

@@ -11,7 +11,9 @@
 #include "craterkit/sph/physics/eos.hpp"
 #include "craterkit/sph/physics/p_alpha.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
+
+using namespace sph;
 
 namespace {
 
@@ -127,4 +129,4 @@ double lithostatic_pressure_adaptive(const Material& material, double p_top, dou
   return adaptive_step(material, p_top, thickness, g, relative_tolerance, 0);
 }
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

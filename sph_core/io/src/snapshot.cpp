@@ -3,10 +3,23 @@
 #include <utility>
 
 #include "craterkit/common/atomic_file.hpp"
+#include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/io/xdmf.hpp"
 #include "snapshot_hdf5.hpp"
 
 namespace craterkit::sph {
+
+double RunAttributes::number(const std::string& key, const std::string& source) const {
+  const auto it = numbers.find(key);
+  if (it == numbers.end()) throw InputError(source + ": attribute " + key + " missing");
+  return it->second;
+}
+
+const std::string& RunAttributes::text(const std::string& key, const std::string& source) const {
+  const auto it = texts.find(key);
+  if (it == texts.end()) throw InputError(source + ": attribute " + key + " missing");
+  return it->second;
+}
 
 void write_snapshot(const std::filesystem::path& h5, const Particles& particles,
                     const RunAttributes& attributes) {

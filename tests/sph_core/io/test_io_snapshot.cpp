@@ -17,6 +17,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/io/checkpoint.hpp"
 #include "craterkit/sph/io/snapshot.hpp"
+#include "craterkit/sph/io/solver_state.hpp"
 #include "craterkit/sph/io/xdmf.hpp"
 #include "sph_core/test_io_scratch_directory.hpp"
 
@@ -379,4 +380,55 @@ TEST(IoCheckpoint, MissingOrMistypedFieldIsNamed) {
   H5Fclose(file);
   message = read_error(dir / "c.h5");
   EXPECT_NE(message.find("'vz' has 49 entries, particle_count is 50"), std::string::npos) << message;
+}
+
+// The solver's state survives the attributes of a checkpoint exactly, and the late stage's entries appear
+// only after the switch.
+TEST(SolverStateAttributes, RoundTripBeforeAndAfterTheSwitch) {
+  craterkit::sph::SolverState state;
+  state.time = 0.125;
+  state.step = 77;
+  state.next_time_step = 1.0 / 3.0;
+  state.initial.mass = 2.5;
+  state.initial.momentum_z = -1e-17;
+  state.initial.total_energy = 6.02e23;
+  state.initial.absolute_momentum = 0.1;
+  craterkit::sph::RunAttributes before;
+  craterkit::sph::write_solver_state(state, before);
+  EXPECT_EQ(before.numbers.count("late_stage_transition_time"), 0u);
+  EXPECT_EQ(before.texts.count("late_stage"), 0u);
+  const auto read = craterkit::sph::read_solver_state(before, "test");
+  EXPECT_EQ(read.time, state.time);
+  EXPECT_EQ(read.step, state.step);
+  EXPECT_EQ(read.next_time_step, state.next_time_step);
+  EXPECT_EQ(read.initial.mass, state.initial.mass);
+  EXPECT_EQ(read.initial.momentum_z, state.initial.momentum_z);
+  EXPECT_EQ(read.initial.total_energy, state.initial.total_energy);
+  EXPECT_EQ(read.initial.absolute_momentum, state.initial.absolute_momentum);
+  EXPECT_FALSE(read.late_stage_active);
+
+  state.late_stage_active = true;
+  state.transition_time = 0.1;
+  state.A_low = 0.027e6;
+  state.mach_at_transition = 0.02;
+  state.late_stage_max_mach = 0.05;
+  craterkit::sph::RunAttributes after;
+  craterkit::sph::write_solver_state(state, after);
+  EXPECT_EQ(after.numbers.at("late_stage_transition_time"), 0.1);
+  EXPECT_EQ(after.numbers.at("late_stage_A_low"), 0.027e6);
+  EXPECT_NE(after.texts.at("late_stage").find("A_low"), std::string::npos);
+  const auto late = craterkit::sph::read_solver_state(after, "test");
+  EXPECT_TRUE(late.late_stage_active);
+  EXPECT_EQ(late.mach_at_transition, 0.02);
+  EXPECT_EQ(late.late_stage_max_mach, 0.05);
+
+  after.numbers.erase("next_time_step");
+  try {
+    (void)craterkit::sph::read_solver_state(after, "run/checkpoint.h5");
+    FAIL() << "a missing attribute was accepted";
+  } catch (const craterkit::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("run/checkpoint.h5: attribute next_time_step missing"),
+              std::string::npos)
+        << e.what();
+  }
 }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "craterkit/common/input_error.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/physics/material.hpp"
 
 namespace {

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/physics/material.hpp"
 #include "craterkit/sph/physics/material_response.hpp"
 #include "craterkit/sph/physics/p_alpha.hpp"

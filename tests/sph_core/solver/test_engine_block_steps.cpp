@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "craterkit/sph/io/checkpoint.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/engine_sedov_common.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 
@@ -38,20 +39,20 @@ TEST(BlockTimeSteps, SedovBlastMatchesTheSimilaritySolutionWithFewerUpdates) {
 
 namespace {
 
-SimulationConfig small_sod(std::uint64_t max_steps) {
-  SimulationConfig config;
+StandardProblemConfig small_sod(std::uint64_t max_steps) {
+  StandardProblemConfig config;
   SodSetup setup;
   setup.left_particles_per_length = 40;
   setup.cross_section = 12.0 / 40;
-  config.setup = setup;
-  config.run.end_time = 0.2;
-  config.run.max_steps = max_steps;
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
-  config.neighbours.sort_interval = 3;
-  config.neighbours.search.skin = 0.1;
-  config.time_step.block_levels = 4;
-  config.output.checkpoint_interval_steps = 4;
-  config.output.checkpoint_interval_seconds = 0;
+  config.problem = setup;
+  config.simulation.run.end_time = 0.2;
+  config.simulation.run.max_steps = max_steps;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.simulation.solver.neighbours.sort_interval = 3;
+  config.simulation.solver.neighbours.search.skin = 0.1;
+  config.simulation.solver.time_step.block_levels = 4;
+  config.simulation.output.checkpoint_interval_steps = 4;
+  config.simulation.output.checkpoint_interval_seconds = 0;
   return config;
 }
 
@@ -68,7 +69,7 @@ TEST(BlockTimeSteps, ResumedRunEqualsUninterruptedRunBitwise) {
   options.progress = false;
   const auto straight = scratch("straight");
   options.output_directory = straight;
-  const auto whole = run_simulation(small_sod(14), options);
+  const auto whole = run_standard_problem(small_sod(14), options);
   ASSERT_EQ(whole.steps, 14u);
   // Several levels in use (the left gas is hotter), or the test would show nothing: more updates than one
   // per particle and block, fewer than if every particle were on the finest of the 4 levels.
@@ -78,9 +79,9 @@ TEST(BlockTimeSteps, ResumedRunEqualsUninterruptedRunBitwise) {
   // Killed after its step-8 checkpoint: the state of a run that stopped there.
   const auto resumed = scratch("resumed");
   options.output_directory = resumed;
-  run_simulation(small_sod(8), options);
+  run_standard_problem(small_sod(8), options);
   options.resume = true;
-  const auto rest = run_simulation(small_sod(14), options);
+  const auto rest = run_standard_problem(small_sod(14), options);
   EXPECT_TRUE(rest.resumed);
   EXPECT_EQ(rest.steps, 14u);
 

@@ -35,8 +35,10 @@
 #include <vector>
 
 #include "craterkit/sph/io/config.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/physics/material.hpp"
 #include "craterkit/sph/physics/p_alpha.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 
@@ -129,10 +131,10 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
   ASSERT_TRUE(material.porosity.has_value());
   const PAlphaParameters& crush = material.porosity->crush_curve;
   const double rho1 = std::get<Tillotson>(material.eos).reference_density / crush.initial_distention;
-  SimulationConfig config;
-  config.viscosity.alpha = 0.0;
-  config.viscosity.beta = 0.0;
-  Simulation sim(config, make_column(material, config.smoothing.eta));
+  StandardProblemConfig config;
+  config.simulation.solver.viscosity.alpha = 0.0;
+  config.simulation.solver.viscosity.beta = 0.0;
+  Simulation sim(config.simulation.solver, make_column(material, config.simulation.solver.smoothing.eta));
   auto& p = sim.particles();
   std::vector<double> initial_x(p.size());
   for (std::size_t k = 0; k < p.size(); ++k) initial_x[p.id[k]] = p.x[k];
@@ -257,20 +259,20 @@ TEST(EngineCompaction, QuasiStaticUniaxialCompressionFollowsTheCrushCurve) {
 TEST(EngineCompaction, CompactingRestartIsBitwise) {
   omp_set_num_threads(1);
   const Material material = load_material("basalt_matrix_ryugu");
-  SimulationConfig config;
-  auto problem = make_column(material, config.smoothing.eta);
+  StandardProblemConfig config;
+  auto problem = make_column(material, config.simulation.solver.smoothing.eta);
   problem.box.lower[0] = -0.5 * column_planes * spacing;
   problem.box.upper[0] = 0.5 * column_planes * spacing;
   problem.box.periodic[0] = true;
   for (std::size_t k = 0; k < problem.particles.size(); ++k) {
     problem.particles.vx[k] = problem.particles.x[k] < 0.0 ? 50.0 : -50.0;
-    problem.particles.viscosity_alpha[k] = config.viscosity.alpha;
+    problem.particles.viscosity_alpha[k] = config.simulation.solver.viscosity.alpha;
   }
   const auto restart_problem = problem;
-  Simulation straight(config, std::move(problem));
+  Simulation straight(config.simulation.solver, std::move(problem));
   for (int k = 0; k < 15; ++k) straight.step(1.0);
   straight.force_neighbour_rebuild();  // as after writing a checkpoint
-  Simulation resumed(config, restart_problem, straight.particles(), straight.attributes());
+  Simulation resumed(config.simulation.solver, restart_problem, straight.particles(), straight.state());
   for (int k = 0; k < 15; ++k) {
     straight.step(1.0);
     resumed.step(1.0);

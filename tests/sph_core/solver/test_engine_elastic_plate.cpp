@@ -37,8 +37,7 @@
 #include <string>
 #include <vector>
 
-#include "craterkit/sph/io/config.hpp"
-#include "craterkit/sph/solver/simulation.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/solid_test_setups.hpp"
 
 namespace {
@@ -81,18 +80,18 @@ PlateRun run_plate(int particles_across, double relative_amplitude) {
   const double dx = plate_thickness / particles_across;
   const int along = static_cast<int>(std::lround(plate_length / dx));
   const int across_y = 7;
-  SimulationConfig config;
+  StandardProblemConfig config;
   // h follows the density only: the steering towards the lattice neighbour number (integrator.hpp) is
   // meant for gas that expands away from a particle; at the free surfaces of a solid, which every
   // particle of a thin plate is near, it would only inflate h. Band 1: never steered upwards.
-  config.smoothing.neighbour_band = 1.0;
-  config.smoothing.max_smoothing_length = 1.3 * config.smoothing.eta * dx;
+  config.simulation.solver.smoothing.neighbour_band = 1.0;
+  config.simulation.solver.smoothing.max_smoothing_length = 1.3 * config.simulation.solver.smoothing.eta * dx;
   // Morris-Monaghan switch: alpha decays to 0.1 away from compression, which halves the viscous signal
   // speed in the Courant step (and the damping of the oscillation).
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
   if (const char* epsilon = std::getenv("CRATERKIT_PLATE_ARTIFICIAL_STRESS"))
-    config.artificial_stress = std::stod(epsilon);
-  const double eta = config.smoothing.eta;
+    config.simulation.solver.artificial_stress = std::stod(epsilon);
+  const double eta = config.simulation.solver.smoothing.eta;
   const double T = analytic_period();
   const double end_velocity = relative_amplitude * plate_length * 2.0 * std::numbers::pi / T;
 
@@ -104,8 +103,8 @@ PlateRun run_plate(int particles_across, double relative_amplitude) {
     for (int j = 0; j < across_y; ++j) {
       for (int l = 0; l < particles_across; ++l) {
         const double x = (i + 0.5) * dx, y = (j + 0.5) * dx, z = (l + 0.5) * dx - 0.5 * plate_thickness;
-        const auto k =
-            solid_test::add_particle(p, x, y, z, dx, density, eta, config.viscosity.alpha_min, false);
+        const auto k = solid_test::add_particle(p, x, y, z, dx, density, eta,
+                                                config.simulation.solver.viscosity.alpha_min, false);
         p.vz[k] = end_velocity * mode_shape(x);
         at_end.push_back(i == 0 || i == along - 1);
       }
@@ -115,7 +114,7 @@ PlateRun run_plate(int particles_across, double relative_amplitude) {
   problem.box.upper = {2.0 * plate_length, across_y * dx, plate_length};
   problem.box.periodic = {false, true, false};
 
-  Simulation sim(config, std::move(problem));
+  Simulation sim(config.simulation.solver, std::move(problem));
   auto end_z = [&]() {
     const auto& q = sim.particles();
     double sum = 0.0;

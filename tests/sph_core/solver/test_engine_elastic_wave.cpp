@@ -17,8 +17,10 @@
 #include <vector>
 
 #include "craterkit/sph/io/config.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/physics/deviatoric_stress.hpp"
 #include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 
@@ -99,8 +101,9 @@ Measurement measure_front_speed(const Material& material) {
   const double c_longitudinal =
       std::sqrt((std::get<Tillotson>(material.eos).A + 4.0 / 3.0 * material.shear_modulus) /
                 std::get<Tillotson>(material.eos).reference_density);
-  SimulationConfig config;
-  Simulation sim(config, make_bar(material, config.smoothing.eta, config.viscosity.alpha));
+  StandardProblemConfig config;
+  Simulation sim(config.simulation.solver, make_bar(material, config.simulation.solver.smoothing.eta,
+                                                    config.simulation.solver.viscosity.alpha));
 
   // Fronts from the centre and from the periodic ends meet at a quarter of the bar, t = L / (4 c_L)
   // (c_L is the fastest wave either material can carry).
@@ -169,14 +172,15 @@ TEST(EngineElasticWave, FluidFrontTravelsAtBulkSoundSpeed) {
 TEST(EngineElasticWave, YieldingSolidRestartIsBitwise) {
   Material material = load_material("aluminium_projectile");
   material.strength = VonMisesStrength{1e6};
-  SimulationConfig config;
-  auto problem = make_bar(material, config.smoothing.eta, config.viscosity.alpha);
+  StandardProblemConfig config;
+  auto problem =
+      make_bar(material, config.simulation.solver.smoothing.eta, config.simulation.solver.viscosity.alpha);
   for (auto& v : problem.particles.vx) v *= 20.0;
   const auto restart_problem = problem;
-  Simulation straight(config, std::move(problem));
+  Simulation straight(config.simulation.solver, std::move(problem));
   for (int k = 0; k < 15; ++k) straight.step(1.0);
   straight.force_neighbour_rebuild();  // as after writing a checkpoint
-  Simulation resumed(config, restart_problem, straight.particles(), straight.attributes());
+  Simulation resumed(config.simulation.solver, restart_problem, straight.particles(), straight.state());
   for (int k = 0; k < 15; ++k) {
     straight.step(1.0);
     resumed.step(1.0);

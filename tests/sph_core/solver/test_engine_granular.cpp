@@ -57,7 +57,7 @@ double cut_corner_displacement(double height_over_critical_unit) {
   s.floor_cells = 48;
   s.initial = InitialStress::free_standing;
   s.cohesion = s.density * s.gravity * block_height(s) / height_over_critical_unit;
-  const SimulationConfig config = block_config(s);
+  const StandardProblemConfig config = block_config(s);
   ProblemSetup problem = make_block(s, config);
   // The top front corner: moving particles within 2 cells of the face and of the top.
   std::vector<std::uint64_t> corner;
@@ -72,7 +72,7 @@ double cut_corner_displacement(double height_over_critical_unit) {
     x0[p0.id[k]] = p0.x[k];
     z0[p0.id[k]] = p0.z[k];
   }
-  Simulation sim(config, std::move(problem));
+  Simulation sim(config.simulation.solver, std::move(problem));
   const double end_time = 5.0 * free_fall_time(s);
   while (sim.time() < end_time) sim.step(end_time);
   std::vector<bool> in_corner(x0.size(), false);

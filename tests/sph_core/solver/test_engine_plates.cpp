@@ -16,18 +16,18 @@ namespace ts = craterkit::test_support;
 namespace {
 
 void check_plates(double impact_velocity, int block_levels = 0) {
-  SimulationConfig config;
+  StandardProblemConfig config;
   PlateImpactSetup setup;
   setup.impact_velocity = impact_velocity;
   setup.projectile_thickness = 0.02;
   setup.target_thickness = 0.04;
   setup.particle_spacing = 5e-4;
-  config.setup = setup;
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
-  config.time_step.block_levels = block_levels;
-  if (block_levels > 0) config.neighbours.search.skin = 0.1;
+  config.problem = setup;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.simulation.solver.time_step.block_levels = block_levels;
+  if (block_levels > 0) config.simulation.solver.neighbours.search.skin = 0.1;
   const double end_time = 2.0e-6;
-  config.run.end_time = end_time;
+  config.simulation.run.end_time = end_time;
   auto sim = engine_test::run_to(config, end_time);
 
   const auto& materials = sim.materials();

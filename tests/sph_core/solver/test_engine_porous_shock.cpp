@@ -17,8 +17,7 @@
 #include <fstream>
 #include <string>
 
-#include "craterkit/sph/io/config.hpp"
-#include "craterkit/sph/solver/simulation.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "support/porous_hugoniot.hpp"
 
 using namespace craterkit::sph;
@@ -28,7 +27,7 @@ namespace {
 
 void check_porous_plates(double impact_velocity) {
   omp_set_num_threads(1);  // 5040 particles: two threads cost more in synchronisation than they gain
-  SimulationConfig config;
+  StandardProblemConfig config;
   PlateImpactSetup setup;
   setup.projectile_material = "basalt_matrix_ryugu";
   setup.target_material = "basalt_matrix_ryugu";
@@ -36,13 +35,14 @@ void check_porous_plates(double impact_velocity) {
   setup.particle_spacing = 1e-3;
   setup.projectile_thickness = 70 * setup.particle_spacing;
   setup.target_thickness = 70 * setup.particle_spacing;
-  config.setup = setup;
+  config.problem = setup;
   // Constant Monaghan-Gingold viscosity (alpha = 1, beta = 2, physics.md defaults). With the
   // Morris-Monaghan switch the viscosity decays behind the front and the stiff matrix rings (pressure
   // swinging between -50 and +230 MPa around 107 MPa at 400 m/s); every swing above P_s compacts fully
   // and irreversibly, so the plateau ends at alpha = 1, rho 3 % above the Hugoniot (docs/validation.md).
-  config.viscosity.viscosity_switch = ViscositySwitch::none;
-  ProblemSetup problem = make_plate_impact(setup, config.smoothing.eta, config.viscosity.alpha);
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::none;
+  ProblemSetup problem = make_plate_impact(setup, config.simulation.solver.smoothing.eta,
+                                           config.simulation.solver.viscosity.alpha);
   for (auto& material : problem.materials) material.strength.reset();  // the hydrodynamic reference
   const auto& target = problem.materials[1];
   const double u_p = 0.5 * impact_velocity;
@@ -50,7 +50,7 @@ void check_porous_plates(double impact_velocity) {
       ts::porous_hugoniot_at_particle_velocity(target.eos, target.porosity->crush_curve, u_p);
   // Until the shocked target is 22 particle spacings long (two margins and ten spacings to average over).
   const double end_time = 22.0 * setup.particle_spacing / (reference.shock_velocity - u_p);
-  Simulation sim(config, std::move(problem));
+  Simulation sim(config.simulation.solver, std::move(problem));
   while (sim.time() < end_time) sim.step(end_time);
   // Shocked target: between the contact and the shock front, away from both by a few particle spacings
   // (shock width; the start-up transient at the contact, where the first particles are over-heated).

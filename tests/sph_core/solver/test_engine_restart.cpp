@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "craterkit/sph/io/checkpoint.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 
 using namespace craterkit::sph;
@@ -16,18 +17,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-SimulationConfig small_sod(std::uint64_t max_steps) {
-  SimulationConfig config;
+StandardProblemConfig small_sod(std::uint64_t max_steps) {
+  StandardProblemConfig config;
   SodSetup setup;
   setup.left_particles_per_length = 40;
   setup.cross_section = 12.0 / 40;
-  config.setup = setup;
-  config.run.end_time = 0.2;
-  config.run.max_steps = max_steps;
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
-  config.neighbours.sort_interval = 7;
-  config.output.checkpoint_interval_steps = 10;
-  config.output.checkpoint_interval_seconds = 0;
+  config.problem = setup;
+  config.simulation.run.end_time = 0.2;
+  config.simulation.run.max_steps = max_steps;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.simulation.solver.neighbours.sort_interval = 7;
+  config.simulation.output.checkpoint_interval_steps = 10;
+  config.simulation.output.checkpoint_interval_seconds = 0;
   return config;
 }
 
@@ -52,13 +53,13 @@ TEST(Restart, ResumedRunEqualsUninterruptedRunBitwise) {
   options.progress = false;
   const auto straight = scratch("straight");
   options.output_directory = straight;
-  run_simulation(small_sod(45), options);
+  run_standard_problem(small_sod(45), options);
 
   // The "killed" run stops after 23 steps; its last checkpoint is from step 20 (the final one written
   // at step 23 is removed, as if the process had died before writing it).
   const auto resumed = scratch("resumed");
   options.output_directory = resumed;
-  run_simulation(small_sod(23), options);
+  run_standard_problem(small_sod(23), options);
   {
     RunAttributes a;
     read_checkpoint(resumed / "checkpoint.h5", &a);
@@ -67,12 +68,12 @@ TEST(Restart, ResumedRunEqualsUninterruptedRunBitwise) {
   // Replace the final checkpoint by the step-20 state of an identical run.
   const auto partial = scratch("partial");
   options.output_directory = partial;
-  run_simulation(small_sod(20), options);
+  run_standard_problem(small_sod(20), options);
   fs::copy_file(partial / "checkpoint.h5", resumed / "checkpoint.h5", fs::copy_options::overwrite_existing);
 
   options.output_directory = resumed;
   options.resume = true;
-  const auto summary = run_simulation(small_sod(45), options);
+  const auto summary = run_standard_problem(small_sod(45), options);
   EXPECT_TRUE(summary.resumed);
   EXPECT_EQ(summary.steps, 45u);
   EXPECT_EQ(summary.steps_this_run, 25u);
@@ -104,9 +105,9 @@ TEST(Restart, SummaryReportsTheIssueFigures) {
   const auto dir = scratch("summary");
   options.output_directory = dir;
   auto config = small_sod(0);
-  config.run.end_time = 0.02;
-  config.output.snapshot_times = {0.0, 0.01};
-  const auto s = run_simulation(config, options);
+  config.simulation.run.end_time = 0.02;
+  config.simulation.output.snapshot_times = {0.0, 0.01};
+  const auto s = run_standard_problem(config, options);
   EXPECT_GT(s.particles, 0u);
   EXPECT_GT(s.steps, 0u);
   EXPECT_DOUBLE_EQ(s.time, 0.02);

@@ -15,6 +15,7 @@
 #include <cstdio>
 
 #include "craterkit/sph/io/conservation_log.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 #include "support/exact_riemann.hpp"
 
@@ -34,14 +35,15 @@ struct SodResult {
 };
 
 SodResult run_sod(int left_per_length) {
-  SimulationConfig config;
+  StandardProblemConfig config;
   SodSetup setup;
   setup.left_particles_per_length = left_per_length;
   setup.cross_section = 16.0 / left_per_length;  // 16 left, 8 right lattice cells across (> 4 h)
-  config.setup = setup;
-  config.smoothing.eta = 1.5;  // resolves the star gas, stretched 2.35x along x only (see the header)
-  config.run.end_time = 0.2;
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  config.problem = setup;
+  config.simulation.solver.smoothing.eta =
+      1.5;  // resolves the star gas, stretched 2.35x along x only (see the header)
+  config.simulation.run.end_time = 0.2;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
   auto sim = engine_test::run_to(config, 0.2);
   const ExactRiemannSolver exact(1.4, GasState{1.0, 0.0, 1.0}, GasState{0.125, 0.0, 0.1});
   const auto& p = sim.particles();

@@ -22,8 +22,7 @@
 #include <cstdint>
 #include <cstdio>
 
-#include "craterkit/sph/io/config.hpp"
-#include "craterkit/sph/solver/simulation.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/solid_test_setups.hpp"
 
 namespace {
@@ -67,10 +66,10 @@ Outcome run_block(double artificial_stress, int steps) {
   problem.box.lower = {0.0, 0.0, 0.0};
   problem.box.upper = {cells * dx, cells * dx, cells * dx};
   problem.box.periodic = {true, true, true};
-  SimulationConfig config;
-  config.artificial_stress = artificial_stress;
-  config.time_step.courant = 0.1;
-  config.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  StandardProblemConfig config;
+  config.simulation.solver.artificial_stress = artificial_stress;
+  config.simulation.solver.time_step.courant = 0.1;
+  config.simulation.solver.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
   std::uint64_t state = 2024;  // a fixed linear congruential sequence: the same noise on every machine
   const auto uniform = [&state] {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;
@@ -80,15 +79,16 @@ Outcome run_block(double artificial_stress, int steps) {
   for (int a = 0; a < cells; ++a) {
     for (int b = 0; b < cells; ++b) {
       for (int c = 0; c < cells; ++c) {
-        const std::size_t k = solid_test::add_particle(p, (a + 0.5) * dx, (b + 0.5) * dx, (c + 0.5) * dx, dx,
-                                                       stretch * rho0, config.smoothing.eta, 1.0, false);
+        const std::size_t k =
+            solid_test::add_particle(p, (a + 0.5) * dx, (b + 0.5) * dx, (c + 0.5) * dx, dx, stretch * rho0,
+                                     config.simulation.solver.smoothing.eta, 1.0, false);
         p.vx[k] = 1e-3 * uniform();
         p.vy[k] = 1e-3 * uniform();
         p.vz[k] = 1e-3 * uniform();
       }
     }
   }
-  Simulation sim(config, std::move(problem));
+  Simulation sim(config.simulation.solver, std::move(problem));
   const double initial_kinetic = sim.conserved().kinetic_energy;
   Outcome out;
   for (int step = 1; step <= steps; ++step) {

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "craterkit/sph/io/checkpoint.hpp"
+#include "craterkit/sph/run/standard_problem_config.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 
@@ -25,19 +26,19 @@ constexpr double t_transition = 1.0e-6;  // s
 constexpr double A_low = 1.0e9;          // Pa
 
 // Planar aluminium-on-basalt impact (fluid Tillotson materials), 1 mm lattice: ~100 steps to 4 us.
-SimulationConfig plates(std::uint64_t max_steps) {
-  SimulationConfig config;
+StandardProblemConfig plates(std::uint64_t max_steps) {
+  StandardProblemConfig config;
   PlateImpactSetup setup;
   setup.particle_spacing = 1e-3;
   setup.cross_section_particles = 6;
-  config.setup = setup;
-  config.run.end_time = 2e-6;
-  config.run.max_steps = max_steps;
-  config.neighbours.sort_interval = 7;
+  config.problem = setup;
+  config.simulation.run.end_time = 2e-6;
+  config.simulation.run.max_steps = max_steps;
+  config.simulation.solver.neighbours.sort_interval = 7;
   config.late_stage.transition_time = t_transition;
   config.late_stage.A_low = A_low;
-  config.output.checkpoint_interval_steps = 5;
-  config.output.checkpoint_interval_seconds = 0;
+  config.simulation.output.checkpoint_interval_steps = 5;
+  config.simulation.output.checkpoint_interval_seconds = 0;
   return config;
 }
 
@@ -58,12 +59,12 @@ std::string read_text(const fs::path& path) {
 
 TEST(LateStageEngine, SwitchLandsOnTransitionTimeAndTheTimeStepGrows) {
   const auto config = plates(0);
-  Simulation sim(config, build_problem(config));
+  Simulation sim(config.simulation.solver, build_standard_problem(config));
   double dt_before = 0.0;
   while (!sim.late_stage_active()) {
     ASSERT_LT(sim.time(), t_transition) << "the switch was missed";
     dt_before = sim.next_time_step();
-    sim.step(config.run.end_time);
+    sim.step(config.simulation.run.end_time);
   }
   EXPECT_EQ(sim.time(), t_transition);  // the step was shortened to end on it
   for (const auto& m : sim.materials()) {
@@ -86,13 +87,15 @@ TEST(LateStageEngine, SwitchLandsOnTransitionTimeAndTheTimeStepGrows) {
   // shocked state and the viscous signal speed make it less): at least twice the last shock-stage step.
   EXPECT_GT(sim.next_time_step(), 2.0 * dt_before);
   const double mach_at_switch = sim.mach_at_transition();
-  for (int k = 0; k < 20 && sim.time() < config.run.end_time; ++k) sim.step(config.run.end_time);
+  for (int k = 0; k < 20 && sim.time() < config.simulation.run.end_time; ++k)
+    sim.step(config.simulation.run.end_time);
   EXPECT_GE(sim.late_stage_max_mach(), mach_at_switch);
-  const auto a = sim.attributes();
-  EXPECT_EQ(a.numbers.at("late_stage_transition_time"), t_transition);
-  EXPECT_EQ(a.numbers.at("late_stage_A_low"), A_low);
-  EXPECT_EQ(a.numbers.at("late_stage_max_mach_at_transition"), mach_at_switch);
-  EXPECT_EQ(a.numbers.at("late_stage_max_mach"), sim.late_stage_max_mach());
+  const auto a = sim.state();
+  EXPECT_TRUE(a.late_stage_active);
+  EXPECT_EQ(a.transition_time, t_transition);
+  EXPECT_EQ(a.A_low, A_low);
+  EXPECT_EQ(a.mach_at_transition, mach_at_switch);
+  EXPECT_EQ(a.late_stage_max_mach, sim.late_stage_max_mach());
 }
 
 // What the switch carries (simulation.hpp): without gravity there is no lithostatic part, so every
@@ -104,10 +107,10 @@ TEST(LateStageEngine, PressureOfTheWavesIsScaledToKeepItsEnergy) {
   auto no_switch = config;
   no_switch.late_stage.transition_time = 0.0;
   no_switch.late_stage.A_low = 0.0;
-  Simulation switched(config, build_problem(config));
-  Simulation reference(no_switch, build_problem(no_switch));
+  Simulation switched(config.simulation.solver, build_standard_problem(config));
+  Simulation reference(no_switch.simulation.solver, build_standard_problem(no_switch));
   while (!switched.late_stage_active()) {
-    switched.step(config.run.end_time);
+    switched.step(config.simulation.run.end_time);
     reference.step(t_transition);
     ASSERT_EQ(switched.time(), reference.time());
   }
@@ -138,7 +141,7 @@ TEST(LateStageEngine, ResumedRunsEqualTheUninterruptedRunAcrossTheSwitch) {
   // the "killed" runs must stop on that grid to follow the same sequence).
   std::uint64_t switch_step = 0;
   {
-    Simulation sim(plates(0), build_problem(plates(0)));
+    Simulation sim(plates(0).simulation.solver, build_standard_problem(plates(0)));
     while (!sim.late_stage_active()) sim.step(1.0);
     switch_step = sim.step_count();
   }
@@ -147,20 +150,20 @@ TEST(LateStageEngine, ResumedRunsEqualTheUninterruptedRunAcrossTheSwitch) {
   const std::uint64_t total = after + 10;
   const auto straight = scratch("straight");
   options.output_directory = straight;
-  const auto full = run_simulation(plates(total), options);
+  const auto full = run_standard_problem(plates(total), options);
   ASSERT_TRUE(full.late_stage);
   // Checkpoints before the switch and after it resume to the same end.
   for (const std::uint64_t checkpoint_step : {before, after}) {
     const auto partial = scratch("partial");
     options.output_directory = partial;
     options.resume = false;
-    run_simulation(plates(checkpoint_step), options);
+    run_standard_problem(plates(checkpoint_step), options);
     RunAttributes a;
     read_checkpoint(partial / "checkpoint.h5", &a);
     ASSERT_EQ(a.step, checkpoint_step);
     EXPECT_EQ(a.numbers.count("late_stage_transition_time"), checkpoint_step == after ? 1u : 0u);
     options.resume = true;
-    const auto summary = run_simulation(plates(total), options);
+    const auto summary = run_standard_problem(plates(total), options);
     EXPECT_TRUE(summary.resumed);
     EXPECT_TRUE(summary.late_stage);
     EXPECT_EQ(summary.mach_at_transition, full.mach_at_transition);

@@ -68,7 +68,7 @@
 #include "craterkit/sph/particles/kernel.hpp"
 #include "craterkit/sph/particles/particles.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
 
 // A boulder to track: its particles are selected by id (when `ids` is not empty) or by material id.
 struct BoulderSpec {
@@ -81,7 +81,7 @@ struct BoulderSpec {
 // The ids and the mass-weighted centre of the particles of `initial` for which select(i) is true
 // (e.g. the particles inside a boulder's shape at t = 0).
 template <class Select>
-BoulderSpec boulder_from_particles(const Particles& initial, std::string name, Select&& select) {
+BoulderSpec boulder_from_particles(const sph::Particles& initial, std::string name, Select&& select) {
   BoulderSpec spec;
   spec.name = std::move(name);
   double m = 0.0;
@@ -108,8 +108,8 @@ struct CraterMeasurementOptions {
   double inner_spacing = 0.0;  // m
   double inner_radius = 0.0;   // m
   double grading = 0.0;
-  KernelType kernel = KernelType::cubic_spline;  // the kernel of the simulation
-  std::array<double, 2> centre{0.0, 0.0};        // m, impact point (x, y) on the pre-impact plane
+  sph::KernelType kernel = sph::KernelType::cubic_spline;  // the kernel of the simulation
+  std::array<double, 2> centre{0.0, 0.0};                  // m, impact point (x, y) on the pre-impact plane
   double max_radius = 0.0;      // m, outer end of every ray; 0: (horizontal extent of the target
                                 // about the centre) - 2 h_max - spacing
   std::size_t n_azimuths = 64;  // rays (multiple of 4, >= 4)
@@ -183,18 +183,18 @@ struct CraterMeasurement {
   double max_radius = 0.0, radial_step = 0.0, vertical_step = 0.0, wall_depth = 0.0;
   double inner_spacing = 0.0, inner_radius = 0.0, grading = 0.0;  // uniform: particle_spacing, 0, 0
   std::array<double, 2> centre{};
-  KernelType kernel = KernelType::cubic_spline;
+  sph::KernelType kernel = sph::KernelType::cubic_spline;
   bool quarter_symmetric = false;
 };
 
 // Throws craterkit::InputError naming the option when an option is out of range (rho_initial,
 // particle_spacing, n_azimuths, negative steps), or when no particle is left once ejecta are removed.
-CraterMeasurement measure_crater(const Particles& particles, const CraterMeasurementOptions& options);
+CraterMeasurement measure_crater(const sph::Particles& particles, const CraterMeasurementOptions& options);
 
 // Interpolated, unnormalised density sum_j m_j W(|x - x_j|, h_j) over non-ejected particles at each
 // point (brute force over the particles: for tests and spot checks, not for production sizes).
-double interpolated_density_direct(const Particles& particles, KernelType kernel, double x, double y,
-                                   double z);
+double interpolated_density_direct(const sph::Particles& particles, sph::KernelType kernel, double x,
+                                   double y, double z);
 
 // The surface height z_s at (x, y) and the density on z = 0 there, by the same column search as
 // measure_crater (for tests and tools). NaN height where no material reaches rho_crit.
@@ -202,8 +202,9 @@ struct ColumnSample {
   double surface_height;
   double plane_density;
 };
-std::vector<ColumnSample> sample_columns(const Particles& particles, KernelType kernel, double rho_crit,
-                                         double vertical_step, const std::vector<std::array<double, 2>>& xy);
+std::vector<ColumnSample> sample_columns(const sph::Particles& particles, sph::KernelType kernel,
+                                         double rho_crit, double vertical_step,
+                                         const std::vector<std::array<double, 2>>& xy);
 
 // crater.json (see docs/crater_measurement.md) as a JSON text; `time` (s) is written when finite.
 std::string crater_json_text(const CraterMeasurement& m, double time);
@@ -212,4 +213,4 @@ std::string crater_profile_csv_text(const CraterMeasurement& m);
 // Writes DIR/crater.json and DIR/crater_profile.csv atomically (creating DIR).
 void write_crater_files(const std::filesystem::path& directory, const CraterMeasurement& m, double time);
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

@@ -11,7 +11,7 @@
 // the set-up: the measurement's steps and tolerances follow the local spacing (crater_measurement.hpp).
 #include <algorithm>
 
-namespace craterkit::sph {
+namespace craterkit::impact {
 
 struct GradedSpacing {
   double inner_spacing = 0.0;  // dx0, m (the core); 0 or >= outer_spacing: uniform at outer_spacing
@@ -38,4 +38,4 @@ struct GradedSpacing {
   }
 };
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

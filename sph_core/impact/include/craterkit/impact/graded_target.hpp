@@ -46,7 +46,7 @@
 
 #include "craterkit/impact/graded_spacing.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
 
 struct GradedShell {
   double inner = 0.0, outer = 0.0;  // radii, m
@@ -83,4 +83,4 @@ std::vector<GradedPoint> graded_quadrant_points(const GradedLayout& layout, doub
 // The number of points in the full hemisphere below z = 0 (4 x the quadrant's), without building them.
 std::size_t graded_point_count(const GradedLayout& layout);
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

@@ -1,5 +1,5 @@
 #pragma once
-// The impact scenario of physics.md section 4 (issue 6): a projectile striking a porous, lithostatically
+// The impact scenario of physics.md section 4: a projectile striking a porous, lithostatically
 // loaded half-space target cut to a hemisphere, with optional boulders. Defaults are the Hayabusa2 SCI
 // case. Documented for users in docs/impact_setup.md.
 //
@@ -70,14 +70,11 @@
 #include <string>
 #include <vector>
 
-#include "craterkit/impact/crater_measurement.hpp"
-#include "craterkit/sph/particles/kernel.hpp"
-#include "craterkit/sph/physics/material.hpp"
-#include "craterkit/sph/run/setups.hpp"
 #include "craterkit/impact/shapes.hpp"
-#include "craterkit/sph/io/snapshot.hpp"
+#include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/solver/problem.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
 
 enum class ProjectileModel { resolved, point_source_stand_in };
 enum class DomainSymmetry { full, quarter };
@@ -161,7 +158,7 @@ struct ImpactSummary {
 };
 
 struct ImpactScenario {
-  ProblemSetup problem;  // materials: [0] target, [1] projectile (or stand-in), [2 + b] boulder b
+  sph::ProblemSetup problem;  // materials: [0] target, [1] projectile (or stand-in), [2 + b] boulder b
   ImpactSummary summary;
 };
 
@@ -177,19 +174,7 @@ ImpactScenario make_impact(const ImpactSetup& setup, double eta, double alpha,
 ImpactSummary impact_projectile_summary(const ImpactSetup& setup, double projectile_reference_density);
 
 // The projectile material with density and every stress-like parameter scaled by k (header comment).
-Material density_scaled_material(const Material& material, double k);
-
-// Snapshot attributes for the crater measurement and the record of the run (docs/impact_setup.md):
-// numbers initial_bulk_density, particle_spacing, inner_spacing, grading, inner_radius, t_transition, A_low,
-// projectile_radius, projectile_mass, projectile_density, impact_speed, impact_angle, stand_in_radius,
-// stand_in_density, stand_in_mass, stand_in_density_scale, coupling_exponent, domain_radius, gravity,
-// boulder_<name>_material; texts kernel, symmetry
-// ("full" | "quarter"), projectile_model.
-RunAttributes impact_run_attributes(const ImpactSummary& summary, KernelType kernel);
-
-// One BoulderSpec per boulder (selected by its material id, initial centre = mass-weighted centre of its
-// particles in `initial`), for measure_crater().
-std::vector<BoulderSpec> impact_boulder_specs(const Particles& initial, const ImpactSummary& summary);
+sph::Material density_scaled_material(const sph::Material& material, double k);
 
 // A few lines saying what was chosen (projectile model and stand-in, counts, t_transition), for the log.
 std::string describe_impact(const ImpactSummary& summary);
@@ -197,4 +182,4 @@ std::string describe_impact(const ImpactSummary& summary);
 [[nodiscard]] std::string symmetry_name(DomainSymmetry symmetry);
 [[nodiscard]] std::string projectile_model_name(ProjectileModel model);
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

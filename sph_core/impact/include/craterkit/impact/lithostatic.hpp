@@ -13,7 +13,7 @@
 
 #include "craterkit/sph/physics/material.hpp"
 
-namespace craterkit::sph {
+namespace craterkit::impact {
 
 struct LithostaticState {
   double density;     // bulk density rho, kg/m^3
@@ -24,13 +24,13 @@ struct LithostaticState {
 // the root of P_m(rho_m, 0) = alpha P, bracketed above the reference density and found by the Brent (GSL)
 // false-position method to a relative 1e-15. Throws craterkit::InputError (naming the material) if the
 // law has no cold pressure (an ideal gas) or no root is found.
-LithostaticState lithostatic_state(const Material& material, double pressure);
+LithostaticState lithostatic_state(const sph::Material& material, double pressure);
 
 // The pressure after descending `thickness` (m) through `material` under gravity g (m/s^2, >= 0), from
 // pressure p_top: dP/dd = g rho(P), integrated by the classical fourth-order Runge-Kutta method with
 // `substeps` equal steps (rho(P) is smooth and, below P_e, nearly constant, so a few steps per
 // particle layer reach round-off).
-double lithostatic_pressure_after(const Material& material, double p_top, double thickness, double g,
+double lithostatic_pressure_after(const sph::Material& material, double p_top, double thickness, double g,
                                   int substeps = 2);
 
 // As lithostatic_pressure_after, with the step chosen by step doubling: one RK4 step over the whole
@@ -38,7 +38,7 @@ double lithostatic_pressure_after(const Material& material, double p_top, double
 // integrated the same way (to at most 2^30 pieces). Under milligravity rho(P) is constant to ~1e-10
 // (P / bulk modulus), so one step is exact to rounding however long the column; through the crush curve
 // the steps shrink where rho(P) bends. For the graded target, where every particle has its own column.
-double lithostatic_pressure_adaptive(const Material& material, double p_top, double thickness, double g,
+double lithostatic_pressure_adaptive(const sph::Material& material, double p_top, double thickness, double g,
                                      double relative_tolerance = 1e-13);
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

@@ -12,7 +12,7 @@
 #include <variant>
 #include <vector>
 
-namespace craterkit::sph {
+namespace craterkit::impact {
 
 struct Sphere {
   std::array<double, 3> centre{0.0, 0.0, 0.0};
@@ -127,4 +127,4 @@ struct VerticalExtent {
   return out;
 }
 
-}  // namespace craterkit::sph
+}  // namespace craterkit::impact

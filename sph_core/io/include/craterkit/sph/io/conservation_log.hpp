@@ -1,73 +1,35 @@
 #pragma once
-// Conserved quantities of the particle set and their per-step CSV log.
-//
-// Sums run over ALL particles, fixed (boundary) and ejected ones included: ejected particles still
-// carry mass, momentum and energy, so removing them from the hydrodynamics must not show up as a
-// loss. Fixed particles contribute their mass, their (normally zero) velocity and their internal and
-// potential energy; momentum is not conserved in runs with fixed walls, which absorb it. With mirror
-// planes (a quarter-domain impact) the sums are those of the simulated quarter: energy is conserved,
-// momentum normal to a plane is not (the plane pushes back).
-// Sums are taken in fixed blocks combined in a fixed order with compensated (Neumaier) summation, so
-// the result does not depend on the number of OpenMP threads.
-#include <array>
+// conservation.csv: the conserved quantities (solver/conserved_quantities.hpp) of every step, one row per
+// call to append(), with the header
+//   time,step,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,internal_energy,
+//   potential_energy,total_energy,absolute_momentum
+// numbers with 17 significant digits (exact round trip). A step log (step_csv_log.hpp): resumed after a
+// restart it keeps the rows up to the restart step byte for byte, so it equals the log of an
+// uninterrupted run.
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <string>
+#include <optional>
 
-#include "craterkit/sph/particles/particles.hpp"
+#include "craterkit/sph/io/step_csv_log.hpp"
+#include "craterkit/sph/solver/conserved_quantities.hpp"
 
 namespace craterkit::sph {
 
-struct ConservedQuantities {
-  double time = 0;                                        // s
-  std::uint64_t step = 0;                                 // completed time steps
-  double mass = 0;                                        // kg
-  double momentum_x = 0, momentum_y = 0, momentum_z = 0;  // kg m/s
-  double kinetic_energy = 0;                              // J, sum m |v|^2 / 2
-  double internal_energy = 0;                             // J, sum m u
-  double potential_energy = 0;                            // J, -sum m g.x (zero at the origin of coordinates)
-  double total_energy = 0;                                // J, kinetic + internal + potential
-  double absolute_momentum = 0;  // kg m/s, sum m |v|: the scale for relative momentum errors
-};
-
-// gravity: the constant acceleration vector, m/s^2 (e.g. {0, 0, -1.5e-4}).
-// time and step are left zero: the caller sets them.
-ConservedQuantities measure_conserved(const Particles& particles, std::array<double, 3> gravity);
-
-// |E - E0| / |E0|; if E0 == 0, |E - E0| / (|K0| + |U0| + |P0|) with the initial kinetic, internal
-// and potential energies; if those vanish too, the absolute change |E - E0| in J.
-double relative_energy_error(const ConservedQuantities& initial, const ConservedQuantities& now);
-
-// |p - p0| / max(absolute_momentum0, absolute_momentum) (0 if both vanish): the change of total
-// momentum relative to the momentum carried by the particles.
-double relative_momentum_error(const ConservedQuantities& initial, const ConservedQuantities& now);
-
-// The CSV log, one row per call to append(), with the header
-//   time,step,mass,momentum_x,momentum_y,momentum_z,kinetic_energy,internal_energy,
-//   potential_energy,total_energy,absolute_momentum
-// numbers with 17 significant digits (exact round trip). Each row is flushed when written.
 class ConservationLog {
  public:
   // Starts a new log (truncating any old file).
   explicit ConservationLog(const std::filesystem::path& csv);
-
-  // Resumes the log of a run restarted after `restart_step` completed steps: keeps the header and
-  // the rows with step <= restart_step byte for byte, drops later rows and any incomplete last line
-  // (left by a killed run), then appends. The resumed log therefore equals the log of an
-  // uninterrupted run. If the file does not exist a new log is started. Throws craterkit::InputError
-  // (naming the file and row) if the header differs or a kept row is malformed.
+  // Resumes the log of a run restarted after `restart_step` completed steps (StepCsvLog); a missing file
+  // starts a new log.
   ConservationLog(const std::filesystem::path& csv, std::uint64_t restart_step);
 
   void append(const ConservedQuantities& q);
 
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-
+  [[nodiscard]] const std::filesystem::path& path() const { return log_.path(); }
   static const char* header();  // the header line, without newline
 
  private:
-  std::filesystem::path path_;
-  std::ofstream out_;
+  StepCsvLog log_;
 };
 
 }  // namespace craterkit::sph

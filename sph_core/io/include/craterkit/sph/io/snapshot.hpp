@@ -30,6 +30,11 @@ struct RunAttributes {
   std::uint64_t step = 0;  // number of completed time steps
   std::map<std::string, double> numbers;
   std::map<std::string, std::string> texts;
+
+  // The value of a required attribute; a missing one is a craterkit::InputError "<source>: attribute <key>
+  // missing".
+  [[nodiscard]] double number(const std::string& key, const std::string& source) const;
+  [[nodiscard]] const std::string& text(const std::string& key, const std::string& source) const;
 };
 
 // Writes h5 (atomically) and its XDMF sidecar (xdmf_sidecar_path(h5), also atomically).

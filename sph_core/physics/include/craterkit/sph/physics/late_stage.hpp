@@ -15,13 +15,10 @@
 //    modulus rule are the same functions of alpha as before. In practice the bulk pressure of the slow
 //    late-stage flow stays far below the elastic limit P_e (for the nominal target P_e/A_low ~ 37 at
 //    A_low = 0.027 MPa), so the distention is frozen after the switch: compaction happens in the shock.
-#include <cstddef>
-#include <cstdint>
 #include <span>
 #include <vector>
 
 #include "craterkit/sph/physics/material.hpp"
-#include "craterkit/sph/io/snapshot.hpp"
 
 namespace craterkit::sph {
 
@@ -31,26 +28,5 @@ Material late_stage_material(const Material& material, double A_low);
 
 // The whole material table (index = material id), switched.
 std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low);
-
-// The largest Mach number |v|/c over the particles, and where (the solver logs it at the switch and
-// during the late stage: the low-sound-speed medium must stay nearly incompressible for its flow).
-// Particles flagged particle_ejected are skipped (they are out of the hydrodynamics); flags may be empty
-// (all particles count). A moving particle with c = 0 has an infinite Mach number. Zero particles: 0.
-struct MachNumber {
-  double value = 0.0;
-  std::size_t particle = 0;  // index of the particle where it is reached
-};
-MachNumber max_mach_number(std::span<const double> vx, std::span<const double> vy, std::span<const double> vz,
-                           std::span<const double> sound_speed, std::span<const std::uint8_t> flags = {});
-
-// Records the switch in the snapshot metadata (RunAttributes): numbers "late_stage_transition_time" (s),
-// "late_stage_A_low" (Pa), "late_stage_max_mach_at_transition", and texts "late_stage" (what the
-// switch did). Snapshots written before the switch carry none of these.
-struct LateStageRecord {
-  double transition_time;         // s
-  double A_low;                   // Pa
-  double max_mach_at_transition;  // max |v|/c just after the switch
-};
-void record_late_stage(RunAttributes& attributes, const LateStageRecord& record);
 
 }  // namespace craterkit::sph

@@ -1,10 +1,9 @@
 #pragma once
 // Materials: an equation of state, the elastic shear modulus, and optionally a strength model and the
-// P-alpha porosity model, read from data/materials/<name>.toml (schema and stated rules in
-// docs/materials.md). Every value is SI. The per-particle evaluation of a material (porous pressure and
-// sound speed, reduced shear modulus, yield strength) is in material_response.hpp; the switch to the
-// late-stage low-sound-speed medium in late_stage.hpp.
-#include <filesystem>
+// P-alpha porosity model (read from data/materials/<name>.toml by io/material_file.hpp; schema and
+// stated rules in docs/materials.md). Every value is SI. The per-particle evaluation of a material (porous
+// pressure and sound speed, reduced shear modulus, yield strength) is in material_response.hpp; the switch to
+// the late-stage low-sound-speed medium in late_stage.hpp.
 #include <optional>
 #include <string>
 #include <variant>
@@ -39,14 +38,5 @@ struct Material {
   std::optional<StrengthModel> strength;   // none: no deviatoric stress (a fluid)
   std::optional<PAlphaPorosity> porosity;  // none: non-porous (distention 1)
 };
-
-// name_or_path: a shipped material name ("basalt" -> <data>/materials/basalt.toml), or the path of any
-// material TOML file (anything containing a '/' or ending in ".toml"). Throws craterkit::InputError for
-// an unknown name (listing the shipped ones), a missing or unparsable file, an unknown key, a missing
-// key, or an out-of-range value, naming the file and the key.
-Material load_material(const std::string& name_or_path);
-
-// Names of the shipped materials (stems of <data>/materials/*.toml), sorted.
-std::vector<std::string> material_names();
 
 }  // namespace craterkit::sph

@@ -18,7 +18,7 @@
 // is exactly the initial mass.
 //
 // Each ejection is recorded (particle id, material, mass, launch time and step, launch position and
-// velocity) in ejecta.csv, one row per particle, resumable with the run (step_csv_log.hpp).
+// velocity), for ejecta.csv (io/ejecta_csv.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -55,10 +55,5 @@ std::size_t eject_particles(Particles& particles, const EjectionRule& rule,
 // Permutation (for Particles::permute) that moves every ejected particle behind the others, keeping the
 // relative order within both groups; *active receives the number of particles not ejected.
 std::vector<std::uint32_t> ejected_last_order(const Particles& particles, std::size_t* active);
-
-// ejecta.csv: header and rows (17 significant digits).
-const char* ejecta_csv_header();
-std::string ejecta_csv_row(const EjectaRecord& record);
-constexpr std::size_t ejecta_csv_step_column = 4;
 
 }  // namespace craterkit::sph

@@ -1,6 +1,6 @@
 #pragma once
 // The simulation driver: one step is a short sequence of phases, each a free function over the
-// particle set and each timed (architecture.md):
+// particle set and each timed (docs/architecture.md):
 //
 //   sort along the space-filling curve (every sort_interval steps)
 //   -> predict (kick, drift, predicted state; integrator.hpp)
@@ -34,64 +34,58 @@
 // alpha P / A_low stays capped at +-late_stage_max_reference_strain, and the elastic shear strain
 // sqrt(J2)/(2 G) under the new G at the same 0.1 (cap_elastic_shear_strain()).
 // The switch is logged on stderr with the largest Mach number |v|/c just after it; the largest Mach
-// number over the late stage is tracked every step. Both go into the attributes of later snapshots and
-// checkpoints (record_late_stage(), plus "late_stage_max_mach"), and a run resumed from a checkpoint
-// written after the switch starts in the switched state.
+// number over the late stage is tracked every step. Both are part of the solver's state (SolverState), and a
+// run resumed from a checkpoint written after the switch starts in the switched state.
 //
 // Ejecta (ejecta.hpp): after every step, moving particles beyond the problem's ejection radius are
 // flagged particle_ejected and moved behind the others; the neighbour search and the pair loops only see
 // the first active_particles() particles, the other phases skip the flag.
 //
-// run_simulation() adds the outputs around the steps: HDF5 snapshots at the requested times (with
-// XDMF), a checkpoint (atomically replaced) every N steps or wall seconds and at the end, the
-// conserved-quantities log per step, the progress line, and the summary.
-#include <array>
+// The solver knows no files, configurations or scenarios: run/run_simulation.hpp drives it with outputs
+// around the steps, and a scenario (run/standard_problems.hpp, the impact library) builds its ProblemSetup.
 #include <cstdint>
-#include <filesystem>
-#include <optional>
-#include <string>
+#include <span>
 #include <utility>
 #include <vector>
 
 #include "craterkit/sph/integration/block_time_steps.hpp"
-#include "craterkit/sph/io/config.hpp"
-#include "craterkit/sph/io/conservation_log.hpp"
-#include "craterkit/impact/crater_measurement.hpp"
-#include "craterkit/sph/solver/ejecta.hpp"
-#include "craterkit/impact/impact_setup.hpp"
 #include "craterkit/sph/integration/integrator.hpp"
-#include "craterkit/sph/physics/late_stage.hpp"
-#include "craterkit/sph/neighbours/neighbour_search.hpp"
-#include "craterkit/sph/solver/phase_timers.hpp"
-#include "craterkit/sph/rates/rates.hpp"
-#include "craterkit/sph/run/setups.hpp"
-#include "craterkit/sph/io/snapshot.hpp"
-#include "craterkit/sph/rates/stress_rates.hpp"
 #include "craterkit/sph/integration/time_step.hpp"
+#include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/rates/rates.hpp"
+#include "craterkit/sph/rates/stress_rates.hpp"
+#include "craterkit/sph/solver/conserved_quantities.hpp"
+#include "craterkit/sph/solver/ejecta.hpp"
+#include "craterkit/sph/solver/phase_timers.hpp"
+#include "craterkit/sph/solver/problem.hpp"
+#include "craterkit/sph/solver/solver_parameters.hpp"
 
 namespace craterkit::sph {
 
 constexpr double late_stage_max_reference_strain = 0.1;
 
-// The set-up named by the configuration (problem.setup), with what the run needs besides the
-// particles: the impact summary (impact set-ups only), the late-stage plan (impact: from the summary,
-// A_low scaled by the stand-in's density factor for the projectile material; others: [late_stage]),
-// the ejection radius (impact: R_dom) and the constant run attributes (impact_run_attributes()).
-struct Scenario {
-  ProblemSetup problem;
-  std::optional<ImpactSummary> impact;
+// What a resumed run needs besides the particles: the clock, the next step, the conserved quantities at
+// t = 0 (relative errors of a resumed run refer to the start of the run) and the late stage's state.
+struct SolverState {
+  double time = 0.0;            // s
+  std::uint64_t step = 0;       // completed steps
+  double next_time_step = 0.0;  // s
+  ConservedQuantities initial{};
+  bool late_stage_active = false;
+  double transition_time = 0.0;      // s (late stage active)
+  double A_low = 0.0;                // Pa, of material 0 (late stage active)
+  double mach_at_transition = 0.0;   // max |v|/c just after the switch
+  double late_stage_max_mach = 0.0;  // max |v|/c since
 };
-Scenario build_scenario(const SimulationConfig& config);
-ProblemSetup build_problem(const SimulationConfig& config);
 
 class Simulation {
  public:
   // A fresh run at t = 0: evaluates the rates and the first time step.
-  Simulation(SimulationConfig config, ProblemSetup problem);
-  // Continues from a checkpoint: `problem` supplies the materials and the box, `particles` and
-  // `attributes` (time, step, next time step, initial conserved quantities) the state.
-  Simulation(SimulationConfig config, ProblemSetup problem, Particles particles,
-             const RunAttributes& attributes);
+  Simulation(SolverParameters parameters, ProblemSetup problem);
+  // Continues from a checkpoint: `problem` supplies the materials and the box, `particles` and `state`
+  // (time, step, next time step, initial conserved quantities, late stage) the state.
+  Simulation(SolverParameters parameters, ProblemSetup problem, Particles particles,
+             const SolverState& state);
 
   // Advances one step, shortened so as not to pass target_time (the step then ends exactly on it).
   // Throws std::runtime_error if the time step collapses (not positive or not finite).
@@ -105,7 +99,7 @@ class Simulation {
   [[nodiscard]] const Particles& particles() const { return problem_.particles; }
   [[nodiscard]] const std::vector<Material>& materials() const { return problem_.materials; }
   [[nodiscard]] const Box& box() const { return problem_.box; }
-  [[nodiscard]] const SimulationConfig& config() const { return config_; }
+  [[nodiscard]] const SolverParameters& parameters() const { return parameters_; }
   [[nodiscard]] PhaseTimers& timers() { return timers_; }
   // Interacting pairs (r < h_i + h_j) per particle in the last rate evaluation.
   [[nodiscard]] double mean_neighbours() const;
@@ -131,7 +125,7 @@ class Simulation {
   [[nodiscard]] std::vector<EjectaRecord> take_new_ejecta() { return std::exchange(new_ejecta_, {}); }
 
   // Everything a checkpoint needs besides the particles.
-  [[nodiscard]] RunAttributes attributes() const;
+  [[nodiscard]] SolverState state() const;
   // Rebuild the neighbour lists at the next step (after a checkpoint, so that a restarted run, which
   // must build them afresh, follows the same sequence of lists).
   void force_neighbour_rebuild() { force_rebuild_ = true; }
@@ -161,7 +155,7 @@ class Simulation {
   void carry_stress_across_switch(const std::vector<double>& stress_factor);
   void cap_elastic_shear_strain();
 
-  SimulationConfig config_;
+  SolverParameters parameters_;
   ProblemSetup problem_;
   std::vector<EquationOfState> equations_of_state_;
   RateOptions rate_options_;
@@ -193,59 +187,5 @@ class Simulation {
   double late_stage_max_mach_ = 0.0;
   std::vector<EjectaRecord> new_ejecta_;
 };
-
-struct RunOptions {
-  std::filesystem::path output_directory;  // empty: run without writing files
-  bool resume = false;                     // continue from output_directory/checkpoint.h5 if present
-  bool progress = true;                    // the progress line on stderr
-  bool log = true;                         // set-up description and late-stage messages on stderr
-};
-
-struct SimulationSummary {
-  std::string name;
-  std::string setup;
-  std::size_t particles = 0;
-  std::uint64_t steps = 0;           // completed steps of the run (including before a restart)
-  std::uint64_t steps_this_run = 0;  // steps taken by this invocation
-  double time = 0.0;                 // s, simulated
-  double wall_seconds = 0.0;
-  double particle_updates_per_second = 0.0;  // particle updates of this run / wall_seconds (particles x
-                                             // steps with a global step; Simulation::particle_updates())
-  std::uint64_t particle_updates = 0;        // of this run
-  double mean_neighbours = 0.0;
-  double relative_energy_error = 0.0;
-  double relative_momentum_error = 0.0;
-  // False when external forces act on the particles - gravity, fixed (boundary) particles, mirror planes -
-  // so that total momentum is not conserved: relative_momentum_error is then the momentum they took up
-  // (for an impact into a target held by its shell, about the projectile's), not an error of the scheme.
-  bool momentum_conserved = true;
-  double bytes_per_particle = 0.0;
-  int threads = 1;
-  bool resumed = false;
-  std::uint64_t neighbour_rebuilds = 0;
-  std::vector<std::pair<std::string, double>> phase_seconds;
-  std::vector<std::string> snapshots;  // files written by this invocation
-  std::string checkpoint;              // the last checkpoint written ("" if none)
-  std::string conservation_log;
-  std::string phase_table;  // PhaseTimers::table()
-  // Late stage (when planned).
-  bool late_stage = false;           // the switch happened
-  double transition_time = 0.0;      // s
-  double mach_at_transition = 0.0;   // max |v|/c just after the switch
-  double late_stage_max_mach = 0.0;  // max |v|/c over the late stage
-  // Impact runs.
-  std::size_t ejected_particles = 0;
-  double ejected_mass = 0.0;  // kg (in this domain)
-  std::string ejecta_log;
-  bool crater_growth_ended = false;  // stopped because growth ended (else end_time or max_steps)
-  // The first sample of crater_growth.csv at which the end-of-growth rule held (also when the run went on
-  // with stop_when_grown = false), and its radius (m, the axis radii of the sample).
-  std::optional<double> crater_growth_end_time;    // s
-  std::optional<double> crater_growth_end_radius;  // m
-  std::optional<CraterMeasurement> crater;         // final measurement
-  std::string crater_json;
-};
-
-SimulationSummary run_simulation(const SimulationConfig& config, const RunOptions& options);
 
 }  // namespace craterkit::sph

@@ -1,4 +1,4 @@
-#include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 
 #include <toml++/toml.h>
 #include <algorithm>

@@ -5,11 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "craterkit/sph/solver/ejecta.hpp"
 #include "craterkit/sph/physics/material.hpp"
-#include "craterkit/sph/neighbours/neighbour_search.hpp"
-#include "craterkit/sph/particles/particles.hpp"
-#include "craterkit/sph/io/snapshot.hpp"
+#include "craterkit/sph/solver/problem.hpp"
 
 namespace craterkit::sph {
 
@@ -55,28 +52,6 @@ struct PlateImpactSetup {
   double target_thickness = 0.04;      // m
   double particle_spacing = 5e-4;      // m (both plates; the lattice spacing along every axis)
   int cross_section_particles = 6;     // lattice cells across y and z
-};
-
-// The late-stage switch planned for a run (late_stage.hpp, physics.md section 3): at transition_time
-// every material id switches to the low-sound-speed law with its own A_low[id] (Pa). Empty A_low: no
-// switch. Per material because a density-scaled stand-in projectile (impact_setup.hpp) needs A_low
-// scaled by its density factor k to keep the sound speed of the material it stands for.
-struct LateStagePlan {
-  double transition_time = 0.0;  // s
-  std::vector<double> A_low;     // Pa, index = material id
-  [[nodiscard]] bool planned() const { return !A_low.empty(); }
-};
-
-struct ProblemSetup {
-  Particles particles;
-  std::vector<Material> materials;  // materials[id] for Particles::material == id
-  Box box;
-  LateStagePlan late_stage{};
-  // Ejecta (ejecta.hpp, docs/impact_setup.md): which moving particles above the pre-impact plane z = 0
-  // leave the hydrodynamics (radius 0: none).
-  EjectionRule ejection{};
-  // Constant attributes of the run written into every snapshot and checkpoint (e.g. the impact's).
-  RunAttributes attributes{};
 };
 
 // eta: h = eta (m/rho)^(1/3); alpha: the initial artificial-viscosity coefficient.

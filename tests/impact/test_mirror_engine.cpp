@@ -20,10 +20,13 @@
 #include <type_traits>
 #include <vector>
 
+#include "craterkit/impact/impact_run.hpp"
 #include "craterkit/sph/io/checkpoint.hpp"
+#include "impact/impact_test_helpers.hpp"
 #include "sph_core/engine_test_helpers.hpp"
 
 using namespace craterkit::sph;
+using namespace craterkit::impact;
 namespace fs = std::filesystem;
 
 namespace {
@@ -31,8 +34,9 @@ namespace {
 // The tiny impact of test_impact_run.cpp (resolved projectile of the target's density, 50 m/s, R_dom = 5 m,
 // dx = 0.5 m, g = 1 m/s^2: 2,144 particles full, 536 in the quarter), with a 10 % skin so that the lists
 // are kept over several steps (needs_rebuild() with images) and a curve sort every 7 steps.
-SimulationConfig small_impact(DomainSymmetry symmetry) {
-  SimulationConfig config;
+ImpactConfig small_impact(DomainSymmetry symmetry) {
+  ImpactConfig config;
+  config.simulation = SimulationConfig{};  // generic solver defaults: the test sets the impact ones it uses
   ImpactSetup s;
   s.projectile_model = ProjectileModel::resolved;
   s.projectile_density = 1300.0;
@@ -43,17 +47,18 @@ SimulationConfig small_impact(DomainSymmetry symmetry) {
   s.particle_spacing = 0.5;
   s.transition_time = 0.01;
   s.symmetry = symmetry;
-  config.setup = s;
-  config.name = "mirror-impact";
-  config.run.end_time = 1.0;
-  config.run.gravity = {0.0, 0.0, -1.0};
-  config.time_step.velocity_change = 0.1;
-  config.time_step.energy_floor = s.impact_speed * s.impact_speed / 400.0;
-  config.smoothing.max_smoothing_length = 3.0 * config.smoothing.eta * s.particle_spacing;
-  config.neighbours.search.skin = 0.1;
-  config.neighbours.sort_interval = 7;
+  config.impact = s;
+  config.simulation.name = "mirror-impact";
+  config.simulation.run.end_time = 1.0;
+  config.simulation.solver.gravity = {0.0, 0.0, -1.0};
+  config.simulation.solver.time_step.velocity_change = 0.1;
+  config.simulation.solver.time_step.energy_floor = s.impact_speed * s.impact_speed / 400.0;
+  config.simulation.solver.smoothing.max_smoothing_length =
+      3.0 * config.simulation.solver.smoothing.eta * s.particle_spacing;
+  config.simulation.solver.neighbours.search.skin = 0.1;
+  config.simulation.solver.neighbours.sort_interval = 7;
   config.crater.check_interval = 0.1;
-  config.output.checkpoint_interval_seconds = 0;
+  config.simulation.output.checkpoint_interval_seconds = 0;
   return config;
 }
 
@@ -99,9 +104,10 @@ struct FieldDifference {
 class FullAndQuarter {
  public:
   FullAndQuarter()
-      : full_(small_impact(DomainSymmetry::full), build_problem(small_impact(DomainSymmetry::full))),
-        quarter_(small_impact(DomainSymmetry::quarter),
-                 build_problem(small_impact(DomainSymmetry::quarter))) {
+      : full_(small_impact(DomainSymmetry::full).simulation.solver,
+              build_impact_run(small_impact(DomainSymmetry::full)).problem),
+        quarter_(small_impact(DomainSymmetry::quarter).simulation.solver,
+                 build_impact_run(small_impact(DomainSymmetry::quarter)).problem) {
     // Quarter id -> ids of the full-run particles at (sx x, sy y, z), by the initial positions (the
     // quarter's lattice is exactly that of the full domain: nodes at (i + 1/2) dx).
     std::map<Position, std::uint64_t> full_ids;
@@ -255,9 +261,9 @@ TEST(MirrorEngine, QuarterDomainEqualsTheFullDomainParticleByParticle) {
 
 TEST(MirrorEngine, ResumedQuarterRunEqualsUninterruptedRunBitwise) {
   auto config = [](std::uint64_t max_steps) {
-    SimulationConfig c = small_impact(DomainSymmetry::quarter);
-    c.run.max_steps = max_steps;
-    c.output.checkpoint_interval_steps = 10;
+    ImpactConfig c = small_impact(DomainSymmetry::quarter);
+    c.simulation.run.max_steps = max_steps;
+    c.simulation.output.checkpoint_interval_steps = 10;
     return c;
   };
   RunOptions options;
@@ -265,20 +271,20 @@ TEST(MirrorEngine, ResumedQuarterRunEqualsUninterruptedRunBitwise) {
   options.log = false;
   const auto straight = scratch("straight");
   options.output_directory = straight;
-  run_simulation(config(45), options);
+  run_impact(config(45), options);
   // A run stopped after 23 steps whose last checkpoint is from step 20 (as in test_engine_restart.cpp).
   const auto resumed = scratch("resumed");
   options.output_directory = resumed;
-  run_simulation(config(23), options);
+  run_impact(config(23), options);
   const auto partial = scratch("partial");
   options.output_directory = partial;
-  run_simulation(config(20), options);
+  run_impact(config(20), options);
   fs::copy_file(partial / "checkpoint.h5", resumed / "checkpoint.h5", fs::copy_options::overwrite_existing);
   options.output_directory = resumed;
   options.resume = true;
-  const auto summary = run_simulation(config(45), options);
-  EXPECT_TRUE(summary.resumed);
-  EXPECT_EQ(summary.steps, 45u);
+  const auto summary = run_impact(config(45), options);
+  EXPECT_TRUE(summary.run.resumed);
+  EXPECT_EQ(summary.run.steps, 45u);
 
   RunAttributes a, b;
   const Particles one = read_checkpoint(straight / "checkpoint.h5", &a);
@@ -292,12 +298,12 @@ TEST(MirrorEngine, ResumedQuarterRunEqualsUninterruptedRunBitwise) {
 }
 
 TEST(MirrorEngine, QuarterRunIndependentOfThreadCount) {
-  SimulationConfig config = small_impact(DomainSymmetry::quarter);
+  ImpactConfig config = small_impact(DomainSymmetry::quarter);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
-  auto one = engine_test::run_to(config, 0.02);
+  auto one = impact_test::run_to(config, 0.02);
   omp_set_num_threads(2);
-  auto two = engine_test::run_to(config, 0.02);
+  auto two = impact_test::run_to(config, 0.02);
   omp_set_num_threads(threads);
   EXPECT_EQ(one.step_count(), two.step_count());
   engine_test::expect_identical_particles(one.particles(), two.particles());

@@ -1,4 +1,5 @@
-#include "craterkit/sph/run/setups.hpp"
+#include "craterkit/sph/run/standard_problems.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 
 #include <algorithm>
 #include <cmath>
