@@ -1,4 +1,4 @@
-// Times the SPH engine on a solid problem (issue 5): a block of the porous Ryugu target
+// Times the SPH engine on a solid problem: a block of the porous Ryugu target
 // (basalt_matrix_ryugu: Tillotson matrix, Lundborg strength, P-alpha porosity) hit by a slab of the
 // aluminium projectile (Tillotson, von Mises) at 1 km/s, on an n^3 lattice (n^3 / 8 in the slab), with
 // 1 and 2 OpenMP threads. The same lattice, velocities and neighbour count are then run as pure

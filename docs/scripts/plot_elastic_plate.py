@@ -1,4 +1,4 @@
-"""Free elastic plate (issue 5): end displacement against time, SPH and thin-plate theory.
+"""Free elastic plate: end displacement against time, SPH and thin-plate theory.
 Usage: /usr/bin/python3 docs/scripts/plot_elastic_plate.py DIR docs/figures/elastic_plate.png [AMPLITUDE]
 DIR holds plate_*.csv written by: CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_elastic_plate;
 AMPLITUDE is the end amplitude over L of those runs (the test's CRATERKIT_PLATE_AMPLITUDE, default 1e-3)."""

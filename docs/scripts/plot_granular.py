@@ -1,4 +1,4 @@
-"""Granular flow under gravity (issue 5): tilted layer, column collapses, vertical cut.
+"""Granular flow under gravity: tilted layer, column collapses, vertical cut.
 Usage: /usr/bin/python3 docs/scripts/plot_granular.py DIR docs/figures/granular.png
 DIR holds the CSV files the tests write when CRATERKIT_VALIDATION_OUTPUT=DIR is set:
   CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_granular

@@ -1,4 +1,4 @@
-// The impact set-up in the engine (issue 6): problem.setup = "impact" in the configuration, the scenario
+// The impact set-up in the engine: problem.setup = "impact" in the configuration, the scenario
 // the engine builds from it (late-stage plan, ejection radius, run attributes), the ejecta bookkeeping,
 // the resumable step logs and the end-of-growth rule.
 #include <gtest/gtest.h>

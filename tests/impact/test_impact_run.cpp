@@ -1,4 +1,4 @@
-// A tiny impact end to end (issue 6): a resolved projectile of the target's density at 50 m/s into a 5 m
+// A tiny impact end to end: a resolved projectile of the target's density at 50 m/s into a 5 m
 // hemisphere at dx = 0.5 m under g = 1 m/s^2 with A_low = 0.27 MPa (2,144 particles), to t = 1 s (the
 // shock stage to 0.01 s and the first part of the late stage). Checks the engine's impact machinery
 // against independent recomputations: the late-stage switch at t_transition, mass conserved exactly

@@ -1,5 +1,5 @@
 // A target in lithostatic equilibrium under gravity stays at rest, before and after the low-sound-speed
-// transition (issue 5): over 20 sound-crossing times L / c the largest speed stays below 1e-3 of the
+// transition: over 20 sound-crossing times L / c the largest speed stays below 1e-3 of the
 // free-fall speed sqrt(g L) and the surface moves less than 0.05 particle spacings. The target is the
 // impact set-up's hemisphere (make_impact through the engine's scenario) without its projectile.
 #include <gtest/gtest.h>

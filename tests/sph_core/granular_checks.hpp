@@ -1,6 +1,6 @@
 #pragma once
 // Granular-flow checks shared by the physics and slow tests (test_engine_granular.cpp,
-// test_engine_granular_slow.cpp): the runs and measurements of issue 5's granular validation; the set-ups
+// test_engine_granular_slow.cpp): the runs and measurements of the granular validation; the set-ups
 // are in granular_setup.hpp. Docs: docs/validation.md, "Granular flow".
 #include <gtest/gtest.h>
 
@@ -177,7 +177,8 @@ inline void check_critical_slope(double friction) {
 // last column of the surface profile holding at least half a layer of particles, measured at rest
 // (rms speed of the grains below 0.01 sqrt(g H0): 8 sqrt(H0/g) for a = 1, 10 for a = 1.5). Accepted:
 // within 20 % of 1.2 a, our reading of the spread of the experimental points about the fit (the papers
-// themselves were not at hand here; the coefficient 1.2 and the bound 1.8 are as quoted in issue 5).
+// themselves were not at hand here; the coefficient 1.2 and the bound 1.8 are as quoted in the granular-flow
+// validation, docs/validation.md).
 inline double runout_ratio(int height_cells, int width_cells, double end_units, const std::string& csv,
                            int floor_cells = 48) {
   BlockSetup s;

@@ -1,5 +1,5 @@
 #pragma once
-// Small solid-mechanics problems built directly in test code (issue 5 validation): an elastic
+// Small solid-mechanics problems built directly in test code: an elastic
 // material with a linear equation of state, a cohesive-frictional (Lundborg) granular material with the
 // linear low-sound-speed law, and a helper that fills a box of lattice sites. Nothing here is engine
 // code: the engine sees ordinary ProblemSetup values.

@@ -76,7 +76,7 @@ TEST(PAlpha, QuasiStaticCompressionFollowsCrushCurveAndNeverReExpands) {
     reached_solid = p_new >= kNominal.solid_pressure;
   }
   EXPECT_TRUE(reached_solid);
-  EXPECT_LT(worst_relative, 0.02);  // issue 5: within 2 % of the crush curve
+  EXPECT_LT(worst_relative, 0.02);  // within 2 % of the crush curve
   // Unload: alpha must stay where it is.
   const double alpha_loaded = alpha;
   for (int n = 0; n < 100000; ++n) {

@@ -12,7 +12,7 @@ namespace {
 using craterkit::test_support::SedovSolution;
 
 TEST(Sedov, Xi0MatchesPublishedValues) {
-  // gamma = 5/3: xi0 = 1.15167 (Kamm & Timmes 2007; issue 4); gamma = 1.4: 1.033
+  // gamma = 5/3: xi0 = 1.15167 (Kamm & Timmes 2007); gamma = 1.4: 1.033
   // (Taylor 1950; Sedov 1959).
   EXPECT_NEAR(SedovSolution(5.0 / 3.0).xi0(), 1.15167, 5e-6);
   EXPECT_NEAR(SedovSolution(1.4).xi0(), 1.033, 5e-4);

@@ -1,4 +1,4 @@
-// Granular flow under gravity (issue 5), the part CI runs: a vertical cut in a cohesive Lundborg material
+// Granular flow under gravity, the part CI runs: a vertical cut in a cohesive Lundborg material
 // against the Rankine height (the cohesionless repose angles and run-outs are minutes-long runs, in
 // test_engine_granular_slow.cpp), on an elastic floor backed by fixed particles (granular_setup.hpp). The
 // material is the late-stage medium of physics.md section 3: the linear low-sound-speed law with a bulk sound

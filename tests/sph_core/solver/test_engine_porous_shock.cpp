@@ -1,4 +1,4 @@
-// A shock in the porous Ryugu target in SPH (physics.md section 2, issue 5): a planar impact of two
+// A shock in the porous Ryugu target in SPH (physics.md section 2): a planar impact of two
 // plates of the porous target material (basalt_matrix_ryugu without its strength, so that the flow is
 // the hydrodynamic one of the reference) must reach the porous Hugoniot state computed independently
 // from the P-alpha relations and the Rankine-Hugoniot conditions (tests/support/porous_hugoniot.hpp),

@@ -1,5 +1,5 @@
 #pragma once
-// Ejecta leaving the simulated domain (physics.md section 4, issue 6).
+// Ejecta leaving the simulated domain (physics.md section 4).
 //
 // Rule (physics.md section 4; docs/impact_setup.md, "Ejecta"): a moving particle (neither fixed nor
 // already ejected) above the pre-impact plane (z > 0) is ejected when

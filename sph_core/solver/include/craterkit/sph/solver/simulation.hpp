@@ -14,28 +14,25 @@
 // strength) the same per-particle phase evaluates the porous pressure and returns states to the crush
 // curve, and the distention rate follows the pair pass. Fluid-only runs take the fluid path unchanged.
 //
-// Late-stage transition (late_stage.hpp, physics.md section 3): when the problem plans one, the step
+// Late-stage transition (physics/late_stage.hpp, physics.md section 3): when the problem plans one, the step
 // that would pass t_transition is shortened to end on it; after that step every material switches to the
 // low-sound-speed law, the equation of state and the rates are evaluated again with the new laws (so the
 // integrator's stored rates belong to the switched medium), and the time step follows the new sound speeds.
-// What each particle carries across the switch (carry_stress_across_switch()): its velocity, its lithostatic
-// pressure and the wave energy of the rest of its stress. The lithostatic part P_s = clamp(P, 0, rho g d)
-// (d the depth below the pre-impact surface z = 0, g the downward gravity) is kept: the density is
-// re-referenced so that the new law returns it, rho = rho_m0 (1 + alpha P / A_low) / alpha. Without this a
-// target at rest would suddenly carry its load with a medium A/A_low times softer and sag
-// (docs/validation.md, "Lithostatic rest"); the density of continuity-SPH is a state variable, so this moves
-// no particle and changes no mass or energy. The dynamic rest P - P_s and the deviatoric stress S are the
-// stresses of the shock stage's waves: their elastic energy per volume, P^2/(2K) and S:S/(4G), is kept, so
-// both are scaled by sqrt(A_low/A) (K and G both scale by A_low/A; a plane wave's stress is its impedance
-// times its particle velocity, and the impedance scales by the same factor). Keeping them unscaled would
-// multiply that energy by A/A_low (1e6 for the SCI target): measured on sci.toml, 480 J appeared at the
-// switch (the crater flow then carried about 2,000 J), heaved the whole target by metres over 100 s and
-// opened a "crater" of loosened material (docs/validation.md, "Impact craters"). The matrix strain
-// alpha P / A_low stays capped at +-late_stage_max_reference_strain, and the elastic shear strain
-// sqrt(J2)/(2 G) under the new G at the same 0.1 (cap_elastic_shear_strain()).
-// The switch is logged on stderr with the largest Mach number |v|/c just after it; the largest Mach
-// number over the late stage is tracked every step. Both are part of the solver's state (SolverState), and a
-// run resumed from a checkpoint written after the switch starts in the switched state.
+// Each particle carries across the switch (carry_stress_across_switch()) its velocity, its lithostatic
+// pressure P_s = clamp(P, 0, rho g d) (d the depth below z = 0), and the elastic energy of the rest of its
+// stress:
+//  - P_s is kept by re-referencing the density so that the new law returns it,
+//    rho = rho_m0 (1 + alpha P / A_low) / alpha: otherwise a target at rest would carry its load with a
+//    medium A/A_low times softer and sag (the continuity density is a state variable, so this moves no
+//    particle and changes no mass or energy);
+//  - the dynamic rest P - P_s and the deviatoric stress S, the stresses of the shock stage's waves, are
+//    scaled by sqrt(A_low/A), which keeps their elastic energy P^2/(2K) and S:S/(4G) (K and G both scale by
+//    A_low/A); unscaled, that energy would grow by A/A_low (1e6 for the SCI target) and heave the target
+//    (docs/validation.md, "Impact craters");
+//  - the matrix strain alpha P / A_low stays within +-late_stage_max_reference_strain, and so does the
+//    elastic shear strain sqrt(J2)/(2 G) under the new G (cap_elastic_shear_strain()).
+// The largest Mach number |v|/c just after the switch and over the late stage are part of the solver's
+// state (SolverState), and a run resumed from a checkpoint written after the switch starts switched.
 //
 // Ejecta (ejecta.hpp): after every step, moving particles beyond the problem's ejection radius are
 // flagged particle_ejected and moved behind the others; the neighbour search and the pair loops only see

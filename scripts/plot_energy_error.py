@@ -1,12 +1,13 @@
 #!/usr/bin/python3
-"""Energy error against time for one or more runs, from their conservation.csv (docs/validation.md,
-"Boulders": the boulder target with the engine's predictor-corrector and with the prototype that advances
-density and stress from the middle of the step).
+"""Energy error against time for one or more runs (craterkit simulate output directories), from their
+conservation.csv: how well a run kept its energy, e.g. two time-step settings of the same impact
+(docs/validation.md, "Boulders").
 
 The error is (E(t) - E(0)) / E_kin(0): total energy (kinetic + internal + potential, ejecta included) against
-the impact's kinetic energy.
+the initial kinetic energy (the impact's).
 
-Usage: /usr/bin/python3 docs/scripts/plot_energy_error.py OUT.png "LABEL=RUN_DIR" ... [--until T]
+Usage: /usr/bin/python3 plot_energy_error.py OUT.png "LABEL=RUN_DIR" ... [--until T]
+(installed in <prefix>/share/craterkit/scripts; in the source tree under scripts/)
 """
 import argparse
 import csv
