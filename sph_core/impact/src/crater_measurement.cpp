@@ -1,5 +1,7 @@
 // Crater measurement (physics.md section 5); the method and its choices are described in
-// crater_measurement.hpp and docs/crater_measurement.md.
+// crater_measurement.hpp and docs/crater_measurement.md. The density on the sample columns and the
+// surface height on each are in crater_columns.hpp; this file turns them into the crater, step by step
+// (measure()).
 #include "craterkit/impact/crater_measurement.hpp"
 
 #include <algorithm>
@@ -8,11 +10,14 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
+#include <span>
 #include <sstream>
 #include <utility>
 
 #include <nlohmann/json.hpp>
 
+#include "crater_columns.hpp"
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
@@ -22,228 +27,12 @@ namespace craterkit::impact {
 using namespace sph;
 namespace {
 
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-constexpr int bisection_steps = 48;  // brackets of a few spacings shrink below 1e-13 of their width
-
-// A candidate of one sample column: the particle's height, its squared horizontal distance from the
-// column axis, smoothing length and mass.
-struct ColumnEntry {
-  double z, r2, h, m;
-  int group;  // smoothing-length group (Column)
-};
-
-// The candidates are grouped by smoothing length (group g holds h in [2^g, 2^(g+1)) times the smallest h),
-// each group sorted by height, so that a density evaluation visits, per group, only the entries within
-// that group's own reach. On a graded target a column through the fine core also meets the deep coarse
-// particles below it, whose supports are many fine spacings tall; with one column-wide reach every
-// evaluation visited every fine particle within it (measured: 1.14 s against 0.38 s with the groups for a
-// 2 m target graded from 0.01 to 0.2 m; 2.1 against 1.8 s for a graded SCI target, dx0 0.028 m, dx_max 0.35
-// m). With equal smoothing lengths there is one group, visited exactly as the single z-sorted list it
-// replaces.
-struct ColumnGroup {
-  std::size_t begin = 0, end = 0;  // entries[begin, end)
-  double reach = 0.0;              // 2 * largest h in the group
-};
-
-struct Column {
-  std::vector<ColumnEntry> entries;  // grouped (see ColumnGroup), each group sorted by z
-  std::vector<ColumnGroup> groups;
-  std::vector<double> heights;  // every entry's z, sorted
-  double reach = 0.0;           // 2 * largest h among the entries
-};
-
-// Non-ejected particles binned into a sparse 2-D grid of vertical columns (edge 2 h_cell). The few
-// particles with h > h_cell (99.9th percentile) are kept aside and checked for every query, so that
-// one expanded particle with a huge h does not inflate every cell.
-class ColumnGrid {
- public:
-  struct Point {
-    double x, y, z, h, m;
-  };
-
-  // quarter: the particles fill only x >= centre_x, y >= centre_y of a target symmetric about both
-  // planes (a quarter-domain run with mirror boundaries); their three mirror images are added.
-  ColumnGrid(const Particles& p, bool quarter, const std::array<double, 2>& centre) {
-    std::vector<std::uint32_t> kept;
-    kept.reserve(p.size());
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if ((p.flags[i] & particle_ejected) != 0) continue;
-      if (!(p.smoothing_length[i] > 0.0) || !std::isfinite(p.smoothing_length[i])) {
-        throw InputError("particle id " + std::to_string(p.id[i]) + ": smoothing_length " +
-                         std::to_string(p.smoothing_length[i]) + " must be a finite number > 0");
-      }
-      kept.push_back(static_cast<std::uint32_t>(i));
-    }
-    if (kept.empty()) return;
-    std::vector<double> hs(kept.size());
-    for (std::size_t k = 0; k < kept.size(); ++k) hs[k] = p.smoothing_length[kept[k]];
-    const std::size_t q = std::min(kept.size() - 1, static_cast<std::size_t>(0.999 * double(kept.size())));
-    std::nth_element(hs.begin(), hs.begin() + static_cast<std::ptrdiff_t>(q), hs.end());
-    h_cell_ = hs[q];
-    edge_ = 2.0 * h_cell_;
-
-    std::vector<Point> all;
-    all.reserve(kept.size() * (quarter ? 4 : 1));
-    for (const std::uint32_t i : kept) {
-      all.push_back({p.x[i], p.y[i], p.z[i], p.smoothing_length[i], p.mass[i]});
-      if (!quarter) continue;
-      const double mx = 2.0 * centre[0] - p.x[i], my = 2.0 * centre[1] - p.y[i];
-      all.push_back({mx, p.y[i], p.z[i], p.smoothing_length[i], p.mass[i]});
-      all.push_back({p.x[i], my, p.z[i], p.smoothing_length[i], p.mass[i]});
-      all.push_back({mx, my, p.z[i], p.smoothing_length[i], p.mass[i]});
-    }
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-    keyed.reserve(all.size());
-    for (std::size_t k = 0; k < all.size(); ++k) {
-      if (all[k].h > h_cell_) {
-        big_.push_back(all[k]);
-        continue;
-      }
-      keyed.emplace_back(key(cell(all[k].x), cell(all[k].y)), static_cast<std::uint32_t>(k));
-    }
-    std::sort(keyed.begin(), keyed.end());
-    points_.reserve(keyed.size());
-    for (std::size_t k = 0; k < keyed.size(); ++k) {
-      if (k == 0 || keyed[k].first != keyed[k - 1].first) {
-        keys_.push_back(keyed[k].first);
-        starts_.push_back(static_cast<std::uint32_t>(k));
-      }
-      points_.push_back(all[keyed[k].second]);
-    }
-    starts_.push_back(static_cast<std::uint32_t>(keyed.size()));
-    count_ = all.size();
-  }
-
-  [[nodiscard]] std::size_t count() const { return count_; }
-  [[nodiscard]] double h_cell() const { return h_cell_; }
-
-  // Calls f(point) for every particle in the 3 x 3 columns around (x, y) and every large-h particle.
-  template <class F>
-  void for_near(double x, double y, F&& f) const {
-    const std::int64_t cx = cell(x), cy = cell(y);
-    for (std::int64_t ix = cx - 1; ix <= cx + 1; ++ix) {
-      for (std::int64_t iy = cy - 1; iy <= cy + 1; ++iy) {
-        const auto it = std::lower_bound(keys_.begin(), keys_.end(), key(ix, iy));
-        if (it == keys_.end() || *it != key(ix, iy)) continue;
-        const auto c = static_cast<std::size_t>(it - keys_.begin());
-        for (std::uint32_t k = starts_[c]; k < starts_[c + 1]; ++k) f(points_[k]);
-      }
-    }
-    for (const auto& b : big_) f(b);
-  }
-
-  // The candidates of the vertical line through (x, y): horizontal distance < 2 h, grouped by smoothing
-  // length and sorted by height within each group.
-  void gather(double x, double y, Column& column) const {
-    column.entries.clear();
-    column.groups.clear();
-    column.heights.clear();
-    column.reach = 0.0;
-    double h_min = std::numeric_limits<double>::infinity();
-    for_near(x, y, [&](const Point& pt) {
-      const double dx = pt.x - x, dy = pt.y - y;
-      const double r2 = dx * dx + dy * dy;
-      if (r2 < 4.0 * pt.h * pt.h) {
-        column.entries.push_back({pt.z, r2, pt.h, pt.m, 0});
-        column.reach = std::max(column.reach, 2.0 * pt.h);
-        h_min = std::min(h_min, pt.h);
-      }
-    });
-    bool one_group = true;
-    for (ColumnEntry& e : column.entries) {
-      // h < 2 h_min is group 0 without a logarithm (all of them when the smoothing lengths are equal).
-      e.group = e.h < 2.0 * h_min ? 0 : static_cast<int>(std::floor(std::log2(e.h / h_min)));
-      one_group = one_group && e.group == 0;
-    }
-    std::sort(column.entries.begin(), column.entries.end(), [](const ColumnEntry& a, const ColumnEntry& b) {
-      return a.group < b.group || (a.group == b.group && a.z < b.z);
-    });
-    for (std::size_t k = 0; k < column.entries.size(); ++k) {
-      const ColumnEntry& e = column.entries[k];
-      if (k == 0 || e.group != column.entries[k - 1].group) column.groups.push_back({k, k, 0.0});
-      column.groups.back().end = k + 1;
-      column.groups.back().reach = std::max(column.groups.back().reach, 2.0 * e.h);
-      column.heights.push_back(e.z);
-    }
-    if (!one_group) std::sort(column.heights.begin(), column.heights.end());
-  }
-
-  template <class Kernel>
-  [[nodiscard]] double density_at(double x, double y, double z) const {
-    double rho = 0.0;
-    for_near(x, y, [&](const Point& pt) {
-      const double dx = pt.x - x, dy = pt.y - y, dz = pt.z - z;
-      rho += pt.m * Kernel::value(std::sqrt(dx * dx + dy * dy + dz * dz), pt.h);
-    });
-    return rho;
-  }
-
- private:
-  [[nodiscard]] std::int64_t cell(double v) const {
-    // Clamped so that stray particles far away cannot overflow the key; queries never go there.
-    const double c = std::clamp(std::floor(v / edge_), -1.0e9, 1.0e9);
-    return static_cast<std::int64_t>(c);
-  }
-  [[nodiscard]] static std::uint64_t key(std::int64_t ix, std::int64_t iy) {
-    return (static_cast<std::uint64_t>(ix + (std::int64_t{1} << 31)) << 32) |
-           static_cast<std::uint64_t>(iy + (std::int64_t{1} << 31));
-  }
-
-  double h_cell_ = 0.0, edge_ = 1.0;
-  std::size_t count_ = 0;
-  std::vector<std::uint64_t> keys_;
-  std::vector<std::uint32_t> starts_;
-  std::vector<Point> points_;
-  std::vector<Point> big_;
-};
-
-template <class Kernel>
-double column_density(const Column& column, double z) {
-  double rho = 0.0;
-  for (const ColumnGroup& g : column.groups) {
-    const auto first = column.entries.begin() + static_cast<std::ptrdiff_t>(g.begin);
-    const auto last = column.entries.begin() + static_cast<std::ptrdiff_t>(g.end);
-    auto it =
-        std::lower_bound(first, last, z - g.reach, [](const ColumnEntry& a, double v) { return a.z < v; });
-    for (; it != last && it->z < z + g.reach; ++it) {
-      const double dz = it->z - z;
-      rho += it->m * Kernel::value(std::sqrt(it->r2 + dz * dz), it->h);
-    }
-  }
-  return rho;
-}
-
-// Highest z where the density crosses rho_crit with rho >= rho_crit just below; NaN if none.
-template <class Kernel>
-double column_surface(const Column& column, double rho_crit, double step) {
-  const auto& e = column.entries;
-  const auto& heights = column.heights;
-  if (e.empty()) return nan;
-  double top = -std::numeric_limits<double>::infinity();
-  for (const auto& c : e) top = std::max(top, c.z + 2.0 * c.h);
-  const double bottom = heights.front() - column.reach;
-  double z = top;  // density zero here
-  while (z > bottom) {
-    double below = z - step;
-    // Skip empty stretches: with no candidate within reach of `below` the density is zero there.
-    auto it = std::lower_bound(heights.begin(), heights.end(), below + column.reach);
-    if (it == heights.begin()) return nan;  // nothing at or below: the scan is done
-    if (*std::prev(it) <= below - column.reach) {
-      z = *std::prev(it) + column.reach;  // zero density down to here
-      continue;
-    }
-    if (column_density<Kernel>(column, below) >= rho_crit) {
-      double lo = below, hi = z;  // rho(lo) >= rho_crit > rho(hi)
-      for (int k = 0; k < bisection_steps; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (column_density<Kernel>(column, mid) >= rho_crit ? lo : hi) = mid;
-      }
-      return 0.5 * (lo + hi);
-    }
-    z = below;
-  }
-  return nan;
-}
+using crater_detail::bisection_steps;
+using crater_detail::Column;
+using crater_detail::column_density;
+using crater_detail::column_surface;
+using crater_detail::ColumnGrid;
+using crater_detail::nan;
 
 void require_positive(double value, const char* name) {
   if (!(value > 0.0) || !std::isfinite(value)) {
@@ -257,18 +46,31 @@ void require_non_negative(double value, const char* name) {
   }
 }
 
-template <class Kernel>
-CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o) {
-  CraterMeasurement m;
+// The steps that follow the local spacing dx(r) (graded_spacing.hpp; the particle spacing everywhere on
+// a uniform target): a defaulted step is taken at each sample radius from dx(r), so that a graded target
+// is measured at its own resolution at every radius; an explicit one stays uniform.
+struct LocalSteps {
+  GradedSpacing local;
+  bool graded_radial = false, graded_vertical = false, graded_wall = false;
+  double vertical_step = 0.0, wall_depth = 0.0;  // m, the uniform values (at the centre when graded)
+
+  // Downward scan step of the surface search on the column at radius r.
+  [[nodiscard]] double vertical_step_at(double r) const {
+    return graded_vertical ? 0.25 * local.at(r) : vertical_step;
+  }
+  // Depth below z = 0 that makes the sample at radius r part of the crater wall.
+  [[nodiscard]] double wall_depth_at(double r) const { return graded_wall ? local.at(r) : wall_depth; }
+};
+
+// Resolves the defaulted settings and records them in m (their values at the centre on a graded target);
+// returns the rules for the steps that vary with the radius.
+LocalSteps resolve_settings(const CraterMeasurementOptions& o, CraterMeasurement& m) {
   m.rho_initial = o.rho_initial;
   m.rho_crit = 0.5 * o.rho_initial;
   m.particle_spacing = o.particle_spacing;
   m.kernel = o.kernel;
   m.centre = o.centre;
   m.quarter_symmetric = o.quarter_symmetric;
-  // The local spacing dx(r) (graded_spacing.hpp): the particle spacing everywhere on a uniform target.
-  // Defaulted steps and tolerances follow it, so that a graded target is measured at its own resolution
-  // at every radius; the settings record their values at the centre.
   const GradedSpacing local{o.inner_spacing, o.inner_radius, o.grading, o.particle_spacing};
   const double spacing0 = local.at(0.0);
   m.inner_spacing = local.graded() ? o.inner_spacing : o.particle_spacing;
@@ -277,11 +79,19 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
   m.radial_step = o.radial_step > 0.0 ? o.radial_step : 0.25 * spacing0;
   m.vertical_step = o.vertical_step > 0.0 ? o.vertical_step : 0.25 * spacing0;
   m.wall_depth = o.wall_depth > 0.0 ? o.wall_depth : spacing0;
-  const bool graded_radial = local.graded() && !(o.radial_step > 0.0);
-  const bool graded_vertical = local.graded() && !(o.vertical_step > 0.0);
-  const bool graded_wall = local.graded() && !(o.wall_depth > 0.0);
+  LocalSteps steps;
+  steps.local = local;
+  steps.graded_radial = local.graded() && !(o.radial_step > 0.0);
+  steps.graded_vertical = local.graded() && !(o.vertical_step > 0.0);
+  steps.graded_wall = local.graded() && !(o.wall_depth > 0.0);
+  steps.vertical_step = m.vertical_step;
+  steps.wall_depth = m.wall_depth;
+  return steps;
+}
 
-  // Ejecta.
+// The mass of the particles flagged ejected, in total and per material id; on a quarter domain the full
+// crater's, four times the quarter's (the particle count stays the file's).
+void measure_ejecta(const Particles& p, bool quarter_symmetric, CraterMeasurement& m) {
   std::map<int, double> ejected_by_material;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if ((p.flags[i] & particle_ejected) == 0) continue;
@@ -289,158 +99,220 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
     ++m.ejected_particles;
     ejected_by_material[p.material[i]] += p.mass[i];
   }
-  if (o.quarter_symmetric) {  // the full crater's ejecta: four times the quarter's
+  if (quarter_symmetric) {
     m.ejected_mass *= 4.0;
     for (auto& entry : ejected_by_material) entry.second *= 4.0;
   }
   m.ejected_mass_by_material.assign(ejected_by_material.begin(), ejected_by_material.end());
+}
 
-  if (o.quarter_symmetric) {
-    std::size_t outside = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if ((p.flags[i] & particle_ejected) == 0 &&
-          (p.x[i] < o.centre[0] - o.particle_spacing || p.y[i] < o.centre[1] - o.particle_spacing)) {
-        ++outside;
-      }
-    }
-    if (outside > 0) {
-      m.warnings.push_back("quarter_symmetric: " + std::to_string(outside) +
-                           " particles lie outside the quarter x >= centre x, y >= centre y; their mirror "
-                           "images overlap the target (is this a full-domain run?)");
+// On a quarter domain, warns when particles lie more than a spacing outside the quarter: their mirror
+// images would overlap the target, which suggests a full-domain run measured as a quarter.
+void warn_outside_quarter(const Particles& p, const CraterMeasurementOptions& o,
+                          std::vector<std::string>& warnings) {
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.flags[i] & particle_ejected) == 0 &&
+        (p.x[i] < o.centre[0] - o.particle_spacing || p.y[i] < o.centre[1] - o.particle_spacing)) {
+      ++outside;
     }
   }
-  const ColumnGrid grid(p, o.quarter_symmetric, o.centre);
-  if (grid.count() == 0) throw InputError("particles: every particle is flagged ejected; nothing to measure");
-
-  if (o.max_radius > 0.0) {
-    m.max_radius = o.max_radius;
-  } else {
-    double extent = std::numeric_limits<double>::infinity();
-    std::array<double, 4> far{-extent, -extent, -extent, -extent};
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if ((p.flags[i] & particle_ejected) != 0) continue;
-      far[0] = std::max(far[0], p.x[i] - o.centre[0]);
-      far[1] = std::max(far[1], o.centre[0] - p.x[i]);
-      far[2] = std::max(far[2], p.y[i] - o.centre[1]);
-      far[3] = std::max(far[3], o.centre[1] - p.y[i]);
-    }
-    if (o.quarter_symmetric) {
-      far[1] = far[0];
-      far[3] = far[2];
-    }
-    for (const double f : far) extent = std::min(extent, f);
-    m.max_radius = extent - 2.0 * grid.h_cell() - o.particle_spacing;
-    if (!(m.max_radius > 4.0 * m.radial_step)) {
-      throw InputError("max_radius: the target extends only " + format_number(extent) +
-                       " m from the centre; give max_radius explicitly");
-    }
+  if (outside > 0) {
+    warnings.push_back("quarter_symmetric: " + std::to_string(outside) +
+                       " particles lie outside the quarter x >= centre x, y >= centre y; their mirror "
+                       "images overlap the target (is this a full-domain run?)");
   }
+}
 
-  const std::size_t na = o.n_azimuths;
-  // Sample radii r_k, each the middle of its radial cell of width w_k: uniform (k + 1/2) dr, or on a
-  // graded target with the defaulted step, w_k = dx(inner edge of the cell) / 4.
-  std::vector<double> radii, widths;
-  if (graded_radial) {
+// The default outer end of the rays: the smallest horizontal extent of the non-ejected particles along
+// +-x and +-y from the centre, less 2 h_cell and one spacing, so that the rounded outer edge of the
+// target is never taken for a crater wall. Throws when that leaves fewer than four radial steps.
+double default_max_radius(const Particles& p, const CraterMeasurementOptions& o, double h_cell,
+                          double radial_step) {
+  double extent = std::numeric_limits<double>::infinity();
+  std::array<double, 4> far{-extent, -extent, -extent, -extent};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if ((p.flags[i] & particle_ejected) != 0) continue;
+    far[0] = std::max(far[0], p.x[i] - o.centre[0]);
+    far[1] = std::max(far[1], o.centre[0] - p.x[i]);
+    far[2] = std::max(far[2], p.y[i] - o.centre[1]);
+    far[3] = std::max(far[3], o.centre[1] - p.y[i]);
+  }
+  if (o.quarter_symmetric) {  // the mirror images reach as far as the quarter
+    far[1] = far[0];
+    far[3] = far[2];
+  }
+  for (const double f : far) extent = std::min(extent, f);
+  const double max_radius = extent - 2.0 * h_cell - o.particle_spacing;
+  if (!(max_radius > 4.0 * radial_step)) {
+    throw InputError("max_radius: the target extends only " + format_number(extent) +
+                     " m from the centre; give max_radius explicitly");
+  }
+  return max_radius;
+}
+
+// The polar sample grid: n_azimuths rays at azimuths a dphi (from +x towards +y), each sampled at the
+// middles r_k of radial cells of width w_k.
+struct PolarGrid {
+  std::size_t n_azimuths = 0;
+  double dphi = 0.0;                  // rad
+  std::vector<double> radius, width;  // m, r_k and w_k
+  [[nodiscard]] std::size_t n_radii() const { return radius.size(); }
+};
+
+// The radial cells: uniform, w_k = dr; or on a graded target with the defaulted step, w_k = dx(inner
+// edge of the cell) / 4, so that the sampling follows the local resolution. Throws when fewer than four
+// cells fit within max_radius.
+PolarGrid polar_grid(const LocalSteps& steps, double max_radius, double radial_step, std::size_t n_azimuths) {
+  PolarGrid g;
+  if (steps.graded_radial) {
     for (double edge = 0.0;;) {
-      const double w = 0.25 * local.at(edge);
-      if (edge + w > m.max_radius) break;
-      radii.push_back(edge + 0.5 * w);
-      widths.push_back(w);
+      const double w = 0.25 * steps.local.at(edge);
+      if (edge + w > max_radius) break;
+      g.radius.push_back(edge + 0.5 * w);
+      g.width.push_back(w);
       edge += w;
     }
   } else {
-    const auto count = static_cast<std::size_t>(std::floor(m.max_radius / m.radial_step));
+    const auto count = static_cast<std::size_t>(std::floor(max_radius / radial_step));
     for (std::size_t k = 0; k < count; ++k) {
-      radii.push_back((double(k) + 0.5) * m.radial_step);
-      widths.push_back(m.radial_step);
+      g.radius.push_back((double(k) + 0.5) * radial_step);
+      g.width.push_back(radial_step);
     }
   }
-  const std::size_t nr = radii.size();
-  if (nr < 4) throw InputError("max_radius " + format_number(m.max_radius) + " m: fewer than 4 radial steps");
-  const double dphi = 2.0 * std::numbers::pi / double(na);
-  auto radius = [&](std::size_t k) { return radii[k]; };
-  auto vertical_step = [&](std::size_t k) {
-    return graded_vertical ? 0.25 * local.at(radii[k]) : m.vertical_step;
-  };
-  auto wall_depth = [&](std::size_t k) { return graded_wall ? local.at(radii[k]) : m.wall_depth; };
+  if (g.n_radii() < 4) {
+    throw InputError("max_radius " + format_number(max_radius) + " m: fewer than 4 radial steps");
+  }
+  g.n_azimuths = n_azimuths;
+  g.dphi = 2.0 * std::numbers::pi / double(n_azimuths);
+  return g;
+}
 
-  // Surface height and plane density on every sample column.
-  std::vector<double> surface(na * nr), plane(na * nr);
+// The surface height z_s and the density on the pre-impact plane z = 0 on every sample column, ray
+// after ray: sample (a, k) at index a * n_radii + k.
+struct SurfaceSamples {
+  std::vector<double> height, plane_density;
+  std::size_t n_radii = 0;
+
+  [[nodiscard]] std::span<const double> ray_height(std::size_t a) const {
+    return {height.data() + a * n_radii, n_radii};
+  }
+  [[nodiscard]] std::span<const double> ray_plane_density(std::size_t a) const {
+    return {plane_density.data() + a * n_radii, n_radii};
+  }
+};
+
+// Samples every column of the polar grid. This is the bulk of the cost; the columns are independent.
+template <class Kernel>
+SurfaceSamples sample_surface(const ColumnGrid& grid, const std::array<double, 2>& centre, const PolarGrid& g,
+                              const LocalSteps& steps, double rho_crit) {
+  const std::size_t nr = g.n_radii(), n = g.n_azimuths * nr;
+  SurfaceSamples samples;
+  samples.n_radii = nr;
+  samples.height.resize(n);
+  samples.plane_density.resize(n);
 #pragma omp parallel
   {
     Column column;
 #pragma omp for schedule(dynamic, 16)
-    for (std::size_t s = 0; s < na * nr; ++s) {
+    for (std::size_t s = 0; s < n; ++s) {
       const std::size_t a = s / nr, k = s % nr;
-      const double phi = dphi * double(a);
-      const double x = o.centre[0] + radius(k) * std::cos(phi), y = o.centre[1] + radius(k) * std::sin(phi);
+      const double phi = g.dphi * double(a), r = g.radius[k];
+      const double x = centre[0] + r * std::cos(phi), y = centre[1] + r * std::sin(phi);
       grid.gather(x, y, column);
-      surface[s] = column_surface<Kernel>(column, m.rho_crit, vertical_step(k));
-      plane[s] = column_density<Kernel>(column, 0.0);
+      samples.height[s] = column_surface<Kernel>(column, rho_crit, steps.vertical_step_at(r));
+      samples.plane_density[s] = column_density<Kernel>(column, 0.0);
     }
   }
+  return samples;
+}
 
-  // Edge of each ray: wall (outermost sample deeper than wall_depth), rim crest outside it, then the
-  // plane crossing next to the wall.
-  m.rays.resize(na);
-  std::size_t missing = 0;
-  for (std::size_t a = 0; a < na; ++a) {
-    RayMeasurement& ray = m.rays[a];
-    ray.azimuth = dphi * double(a);
-    ray.edge_radius = ray.crest_radius = ray.crest_height = ray.wall_radius = nan;
-    const double* zs = &surface[a * nr];
-    const double* rho0 = &plane[a * nr];
-    std::ptrdiff_t kw = -1;
-    for (std::ptrdiff_t k = std::ptrdiff_t(nr) - 1; k >= 0; --k) {
-      if (std::isfinite(zs[k]) && zs[k] < -wall_depth(std::size_t(k))) {
-        kw = k;
-        break;
-      }
-    }
-    if (kw < 0) {
-      ++missing;
-      continue;
-    }
-    ray.wall_radius = radius(std::size_t(kw));
-    std::ptrdiff_t kc = -1;
-    for (auto k = kw + 1; k < std::ptrdiff_t(nr); ++k) {
-      if (std::isfinite(zs[k]) && (kc < 0 || zs[k] > zs[kc])) kc = k;
-    }
-    if (kc < 0) {
-      ++missing;
-      continue;
-    }
-    ray.crest_radius = radius(std::size_t(kc));
-    ray.crest_height = zs[kc];
-    std::ptrdiff_t ke = -1;
-    for (auto k = kw + 1; k <= kc; ++k) {
-      if (rho0[k] >= m.rho_crit) {
-        ke = k;
-        break;
-      }
-    }
-    if (ke < 0) {
-      ++missing;
-      continue;
-    }
-    const double ca = std::cos(ray.azimuth), sa = std::sin(ray.azimuth);
-    double lo = radius(std::size_t(ke - 1)), hi = radius(std::size_t(ke));  // rho(lo) < crit <= rho(hi)
-    for (int it = 0; it < bisection_steps; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      const double rho = grid.density_at<Kernel>(o.centre[0] + mid * ca, o.centre[1] + mid * sa, 0.0);
-      (rho >= m.rho_crit ? hi : lo) = mid;
-    }
-    ray.edge_radius = 0.5 * (lo + hi);
+// The crater wall on one ray: the outermost sample whose surface lies more than the wall depth below
+// z = 0. The edge search never looks inside it, so a fallback clump on the floor cannot be taken for
+// the edge.
+std::optional<std::size_t> wall_sample(std::span<const double> zs, const PolarGrid& g,
+                                       const LocalSteps& steps) {
+  for (std::size_t k = zs.size(); k-- > 0;) {
+    if (std::isfinite(zs[k]) && zs[k] < -steps.wall_depth_at(g.radius[k])) return k;
   }
+  return std::nullopt;
+}
 
-  // The four directional radii and the crater radius.
-  static constexpr std::array<const char*, 4> direction_names{"+x", "-x", "+y", "-y"};
-  const std::array<std::size_t, 4> direction_ray{0, na / 2, na / 4, 3 * na / 4};
-  bool all = true;
+// The rim crest on one ray: the highest surface sample outside the wall (the innermost of equal ones).
+std::optional<std::size_t> crest_sample(std::span<const double> zs, std::size_t wall) {
+  std::optional<std::size_t> crest;
+  for (std::size_t k = wall + 1; k < zs.size(); ++k) {
+    if (std::isfinite(zs[k]) && (!crest || zs[k] > zs[*crest])) crest = k;
+  }
+  return crest;
+}
+
+// The first sample going outward from the wall, up to the crest, where the plane density reaches
+// rho_crit: the crater wall meets the pre-impact plane between it and the sample before it. The crossing
+// next to the wall rather than the outermost one keeps the edge defined when the rim is low (an
+// undisturbed plane reads rho_crit up to lattice noise).
+std::optional<std::size_t> plane_crossing_sample(std::span<const double> rho0, std::size_t wall,
+                                                 std::size_t crest, double rho_crit) {
+  for (std::size_t k = wall + 1; k <= crest; ++k) {
+    if (rho0[k] >= rho_crit) return k;
+  }
+  return std::nullopt;
+}
+
+// The radius between lo and hi (rho(lo) < rho_crit <= rho(hi) on z = 0) where the plane density along
+// the ray at `azimuth` crosses rho_crit, by bisection.
+template <class Kernel>
+double bisect_edge(const ColumnGrid& grid, const std::array<double, 2>& centre, double azimuth, double lo,
+                   double hi, double rho_crit) {
+  const double ca = std::cos(azimuth), sa = std::sin(azimuth);
+  for (int it = 0; it < bisection_steps; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    const double rho = grid.density_at<Kernel>(centre[0] + mid * ca, centre[1] + mid * sa, 0.0);
+    (rho >= rho_crit ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The crater edge along ray a, searched inward from the rim crest: the wall, the crest outside it, then
+// the plane crossing next to the wall, bisected. The ray has no edge (NaN) when it has no wall, no
+// surface outside the wall, or no crossing before the crest; what was not found stays NaN.
+template <class Kernel>
+RayMeasurement measure_ray(const ColumnGrid& grid, const std::array<double, 2>& centre, const PolarGrid& g,
+                           const SurfaceSamples& samples, const LocalSteps& steps, double rho_crit,
+                           std::size_t a) {
+  RayMeasurement ray;
+  ray.azimuth = g.dphi * double(a);
+  ray.edge_radius = ray.crest_radius = ray.crest_height = ray.wall_radius = nan;
+  const std::span<const double> zs = samples.ray_height(a);
+  const std::optional<std::size_t> wall = wall_sample(zs, g, steps);
+  if (!wall) return ray;
+  ray.wall_radius = g.radius[*wall];
+  const std::optional<std::size_t> crest = crest_sample(zs, *wall);
+  if (!crest) return ray;
+  ray.crest_radius = g.radius[*crest];
+  ray.crest_height = zs[*crest];
+  const std::optional<std::size_t> edge =
+      plane_crossing_sample(samples.ray_plane_density(a), *wall, *crest, rho_crit);
+  if (!edge) return ray;
+  ray.edge_radius =
+      bisect_edge<Kernel>(grid, centre, ray.azimuth, g.radius[*edge - 1], g.radius[*edge], rho_crit);
+  return ray;
+}
+
+// The rays of the four axis directions +x, -x, +y, -y (the order of CraterMeasurement::radii).
+constexpr std::array<const char*, 4> direction_names{"+x", "-x", "+y", "-y"};
+std::array<std::size_t, 4> direction_rays(std::size_t n_azimuths) {
+  return {0, n_azimuths / 2, n_azimuths / 4, 3 * n_azimuths / 4};
+}
+
+// The four directional radii, and the warnings about the edges: a direction without an edge, a
+// direction whose rim crest is too low for a well-conditioned edge, rays without an edge.
+void directional_radii(CraterMeasurement& m, const GradedSpacing& local) {
+  const std::size_t na = m.rays.size();
+  const std::array<std::size_t, 4> direction_ray = direction_rays(na);
   for (std::size_t d = 0; d < 4; ++d) {
     m.radii[d] = m.rays[direction_ray[d]].edge_radius;
     if (!std::isfinite(m.radii[d])) {
-      all = false;
       m.warnings.push_back(
           std::string("no crater edge along ") + direction_names[d] +
           ": the surface never lies more than wall_depth = " + format_number(m.wall_depth) +
@@ -456,22 +328,38 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
           "from below outside the wall, so the edge is ill-conditioned (up to 2 h too large)");
     }
   }
+  const auto missing =
+      static_cast<std::size_t>(std::count_if(m.rays.begin(), m.rays.end(), [](const RayMeasurement& ray) {
+        return !std::isfinite(ray.edge_radius);
+      }));
   if (missing > 0) {
     m.warnings.push_back(std::to_string(missing) + " of " + std::to_string(na) + " rays have no crater edge");
   }
-  if (all) {
-    double mean = 0.0;
-    for (const double r : m.radii) mean += 0.25 * r;
-    double var = 0.0;
-    for (const double r : m.radii) var += (r - mean) * (r - mean) / 3.0;
-    m.crater_radius = mean;
-    m.radius_spread = std::sqrt(var);
-    // The resolution term is half the local spacing at the edge (the particle spacing when uniform).
-    const double dx_edge = local.at(mean);
-    m.crater_radius_uncertainty = std::sqrt(0.25 * var + 0.25 * dx_edge * dx_edge);
-  } else {
+}
+
+// The crater radius, the mean of the four directional radii, its spread and uncertainty: the standard
+// error of the mean and half the local spacing at the edge (the resolution of a particle surface),
+// added in quadrature. NaN unless all four directions have an edge.
+void mean_crater_radius(CraterMeasurement& m, const GradedSpacing& local) {
+  if (!std::all_of(m.radii.begin(), m.radii.end(), [](double r) { return std::isfinite(r); })) {
     m.crater_radius = m.crater_radius_uncertainty = m.radius_spread = nan;
+    return;
   }
+  double mean = 0.0;
+  for (const double r : m.radii) mean += 0.25 * r;
+  double var = 0.0;
+  for (const double r : m.radii) var += (r - mean) * (r - mean) / 3.0;
+  m.crater_radius = mean;
+  m.radius_spread = std::sqrt(var);
+  const double dx_edge = local.at(mean);
+  m.crater_radius_uncertainty = std::sqrt(0.25 * var + 0.25 * dx_edge * dx_edge);
+}
+
+// The shape of the outline over all rays: the mean edge radius, the shortest and longest edge and their
+// azimuths, and the outline's centre offset, the first Fourier harmonic of the edge radius (NaN unless
+// every ray has an edge).
+void outline_shape(CraterMeasurement& m) {
+  const std::size_t na = m.rays.size();
   double edge_sum = 0.0;
   std::size_t edge_count = 0;
   for (const auto& ray : m.rays) {
@@ -485,7 +373,7 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
   double harmonic_x = 0.0, harmonic_y = 0.0;
   for (const auto& ray : m.rays) {
     if (!std::isfinite(ray.edge_radius)) continue;
-    if (!(ray.edge_radius >= m.min_edge_radius)) {
+    if (!(ray.edge_radius >= m.min_edge_radius)) {  // also replaces NaN
       m.min_edge_radius = ray.edge_radius;
       m.min_edge_azimuth = ray.azimuth;
     }
@@ -499,34 +387,45 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
   m.outline_centre_offset = edge_count == na && na > 0 ? std::array<double, 2>{2.0 * harmonic_x / double(na),
                                                                                2.0 * harmonic_y / double(na)}
                                                        : std::array<double, 2>{nan, nan};
+}
 
-  // Depth and volume inside the edge of each ray.
+// The apparent depth (the lowest surface sample inside the edge of its ray) and volume (sum of
+// max(0, -z_s) r dr dphi over those samples): the cavity below the pre-impact plane, reduced by
+// fallback. Both NaN when no ray has an edge.
+void depth_and_volume(CraterMeasurement& m, const PolarGrid& g, const SurfaceSamples& samples) {
   double lowest = std::numeric_limits<double>::infinity();
+  bool any_edge = false;
   m.volume = 0.0;
-  for (std::size_t a = 0; a < na; ++a) {
+  for (std::size_t a = 0; a < g.n_azimuths; ++a) {
     const double edge = m.rays[a].edge_radius;
     if (!std::isfinite(edge)) continue;
-    for (std::size_t k = 0; k < nr && radius(k) < edge; ++k) {
-      const double z = surface[a * nr + k];
+    any_edge = true;
+    const std::span<const double> zs = samples.ray_height(a);
+    for (std::size_t k = 0; k < zs.size() && g.radius[k] < edge; ++k) {
+      const double z = zs[k];
       if (!std::isfinite(z)) continue;
       lowest = std::min(lowest, z);
-      m.volume += std::max(0.0, -z) * radius(k) * widths[k] * dphi;
+      m.volume += std::max(0.0, -z) * g.radius[k] * g.width[k] * g.dphi;
     }
   }
   m.depth = std::isfinite(lowest) ? -lowest : nan;
-  if (edge_count == 0) m.volume = nan;
+  if (!any_edge) m.volume = nan;
+}
 
-  // Azimuthal profile and rim.
+// The azimuthal profile (mean, min and max of z_s over the rays at each radius, NaN samples skipped) and
+// the rim: the highest profile mean at or outside the crater radius.
+void profile_and_rim(CraterMeasurement& m, const PolarGrid& g, const SurfaceSamples& samples) {
+  const std::size_t nr = g.n_radii();
   m.profile.resize(nr);
   m.rim_height = m.rim_radius = nan;
   for (std::size_t k = 0; k < nr; ++k) {
     ProfileSample& ps = m.profile[k];
-    ps.radius = radius(k);
+    ps.radius = g.radius[k];
     ps.min_height = std::numeric_limits<double>::infinity();
     ps.max_height = -std::numeric_limits<double>::infinity();
     double sum = 0.0;
-    for (std::size_t a = 0; a < na; ++a) {
-      const double z = surface[a * nr + k];
+    for (std::size_t a = 0; a < g.n_azimuths; ++a) {
+      const double z = samples.height[a * nr + k];
       if (!std::isfinite(z)) continue;
       sum += z;
       ++ps.azimuths;
@@ -544,38 +443,71 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
       m.rim_radius = ps.radius;
     }
   }
+}
 
-  // Boulders.
+// Where one boulder went: the mass-weighted centre of its non-ejected particles (selected by id, or by
+// material id when it has no ids) minus its initial centre, and the mass of its ejected ones.
+BoulderDisplacement track_boulder(const Particles& p, const BoulderSpec& spec) {
+  BoulderDisplacement b;
+  b.name = spec.name;
+  b.initial_centre = spec.initial_centre;
+  std::vector<std::uint64_t> ids = spec.ids;
+  std::sort(ids.begin(), ids.end());
+  std::array<double, 3> c{0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool member = ids.empty() ? int(p.material[i]) == spec.material
+                                    : std::binary_search(ids.begin(), ids.end(), p.id[i]);
+    if (!member) continue;
+    if ((p.flags[i] & particle_ejected) != 0) {
+      b.ejected_mass += p.mass[i];
+      continue;
+    }
+    ++b.particles;
+    b.mass += p.mass[i];
+    c[0] += p.mass[i] * p.x[i];
+    c[1] += p.mass[i] * p.y[i];
+    c[2] += p.mass[i] * p.z[i];
+  }
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    b.centre[k] = b.mass > 0.0 ? c[k] / b.mass : nan;
+    b.displacement[k] = b.centre[k] - b.initial_centre[k];
+    d2 += b.displacement[k] * b.displacement[k];
+  }
+  b.displacement_magnitude = std::sqrt(d2);
+  return b;
+}
+
+// The measurement, step by step: settings, ejecta, the density field, the sample grid and the surface on
+// it, the edge of every ray, then what is derived from the edges and the surface.
+template <class Kernel>
+CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o) {
+  CraterMeasurement m;
+  const LocalSteps steps = resolve_settings(o, m);
+  measure_ejecta(p, o.quarter_symmetric, m);
+  if (o.quarter_symmetric) warn_outside_quarter(p, o, m.warnings);
+
+  const ColumnGrid grid(p, o.quarter_symmetric, o.centre);
+  if (grid.count() == 0) throw InputError("particles: every particle is flagged ejected; nothing to measure");
+  m.max_radius = o.max_radius > 0.0 ? o.max_radius : default_max_radius(p, o, grid.h_cell(), m.radial_step);
+  const PolarGrid g = polar_grid(steps, m.max_radius, m.radial_step, o.n_azimuths);
+  const SurfaceSamples samples = sample_surface<Kernel>(grid, o.centre, g, steps, m.rho_crit);
+
+  m.rays.resize(g.n_azimuths);
+  for (std::size_t a = 0; a < g.n_azimuths; ++a) {
+    m.rays[a] = measure_ray<Kernel>(grid, o.centre, g, samples, steps, m.rho_crit, a);
+  }
+  directional_radii(m, steps.local);
+  mean_crater_radius(m, steps.local);
+  outline_shape(m);
+  depth_and_volume(m, g, samples);
+  profile_and_rim(m, g, samples);
+
   for (const auto& spec : o.boulders) {
-    BoulderDisplacement b;
-    b.name = spec.name;
-    b.initial_centre = spec.initial_centre;
-    std::vector<std::uint64_t> ids = spec.ids;
-    std::sort(ids.begin(), ids.end());
-    std::array<double, 3> c{0.0, 0.0, 0.0};
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      const bool member = ids.empty() ? int(p.material[i]) == spec.material
-                                      : std::binary_search(ids.begin(), ids.end(), p.id[i]);
-      if (!member) continue;
-      if ((p.flags[i] & particle_ejected) != 0) {
-        b.ejected_mass += p.mass[i];
-        continue;
-      }
-      ++b.particles;
-      b.mass += p.mass[i];
-      c[0] += p.mass[i] * p.x[i];
-      c[1] += p.mass[i] * p.y[i];
-      c[2] += p.mass[i] * p.z[i];
+    m.boulders.push_back(track_boulder(p, spec));
+    if (m.boulders.back().particles == 0) {
+      m.warnings.push_back("boulder " + spec.name + ": none of its particles remains");
     }
-    double d2 = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      b.centre[k] = b.mass > 0.0 ? c[k] / b.mass : nan;
-      b.displacement[k] = b.centre[k] - b.initial_centre[k];
-      d2 += b.displacement[k] * b.displacement[k];
-    }
-    b.displacement_magnitude = std::sqrt(d2);
-    if (b.particles == 0) m.warnings.push_back("boulder " + spec.name + ": none of its particles remains");
-    m.boulders.push_back(std::move(b));
   }
   return m;
 }
@@ -602,6 +534,70 @@ void validate(const CraterMeasurementOptions& o) {
 
 nlohmann::json array3(const std::array<double, 3>& v) {
   return nlohmann::json::array({v[0], v[1], v[2]});
+}
+
+double degrees(double radians) {
+  return radians * (180.0 / std::numbers::pi);
+}
+
+// "directions": edge, crest and wall of the four axis rays.
+nlohmann::json directions_json(const CraterMeasurement& m) {
+  nlohmann::json directions = nlohmann::json::object();
+  const std::size_t na = m.rays.size();
+  if (na == 0) return directions;
+  const std::array<std::size_t, 4> direction_ray = direction_rays(na);
+  for (std::size_t d = 0; d < 4; ++d) {
+    const auto& ray = m.rays[direction_ray[d]];
+    directions[direction_names[d]] = {{"edge_radius", ray.edge_radius},
+                                      {"crest_radius", ray.crest_radius},
+                                      {"crest_height", ray.crest_height},
+                                      {"wall_radius", ray.wall_radius}};
+  }
+  return directions;
+}
+
+// "outline": every ray's azimuth and edge, the crater's outline at the pre-impact level (null where a ray
+// has no edge).
+nlohmann::json outline_json(const CraterMeasurement& m) {
+  nlohmann::json azimuths = nlohmann::json::array(), edges = nlohmann::json::array();
+  for (const auto& ray : m.rays) {
+    azimuths.push_back(degrees(ray.azimuth));
+    edges.push_back(ray.edge_radius);
+  }
+  return {{"azimuth_deg", azimuths}, {"edge_radius", edges}};
+}
+
+nlohmann::json boulders_json(const CraterMeasurement& m) {
+  nlohmann::json boulders = nlohmann::json::array();
+  for (const auto& b : m.boulders) {
+    boulders.push_back({{"name", b.name},
+                        {"initial_centre", array3(b.initial_centre)},
+                        {"centre", array3(b.centre)},
+                        {"displacement", array3(b.displacement)},
+                        {"displacement_magnitude", b.displacement_magnitude},
+                        {"particles", b.particles},
+                        {"mass", b.mass},
+                        {"ejected_mass", b.ejected_mass}});
+  }
+  return boulders;
+}
+
+// "settings": the settings actually used, defaults resolved.
+nlohmann::json settings_json(const CraterMeasurement& m) {
+  return {{"rho_initial", m.rho_initial},
+          {"rho_crit", m.rho_crit},
+          {"particle_spacing", m.particle_spacing},
+          {"kernel", std::string(kernel_name(m.kernel))},
+          {"centre", {m.centre[0], m.centre[1]}},
+          {"max_radius", m.max_radius},
+          {"radial_step", m.radial_step},
+          {"vertical_step", m.vertical_step},
+          {"wall_depth", m.wall_depth},
+          {"inner_spacing", m.inner_spacing},
+          {"inner_radius", m.inner_radius},
+          {"grading", m.grading},
+          {"n_azimuths", m.rays.size()},
+          {"quarter_symmetric", m.quarter_symmetric}};
 }
 
 }  // namespace
@@ -645,48 +641,18 @@ std::vector<ColumnSample> sample_columns(const Particles& particles, KernelType 
 
 std::string crater_json_text(const CraterMeasurement& m, double time) {
   using nlohmann::json;
-  static constexpr std::array<const char*, 4> names{"+x", "-x", "+y", "-y"};
-  json radii = json::object(), directions = json::object();
-  const std::size_t na = m.rays.size();
-  const std::array<std::size_t, 4> ray_of{0, na / 2, na / 4, 3 * na / 4};
-  for (std::size_t d = 0; d < 4; ++d) {
-    radii[names[d]] = m.radii[d];
-    if (na == 0) continue;
-    const auto& ray = m.rays[ray_of[d]];
-    directions[names[d]] = {{"edge_radius", ray.edge_radius},
-                            {"crest_radius", ray.crest_radius},
-                            {"crest_height", ray.crest_height},
-                            {"wall_radius", ray.wall_radius}};
-  }
+  json radii = json::object();
+  for (std::size_t d = 0; d < 4; ++d) radii[direction_names[d]] = m.radii[d];
   json ejected_by_material = json::object();
   for (const auto& [material, mass] : m.ejected_mass_by_material)
     ejected_by_material[std::to_string(material)] = mass;
-  // Every ray's edge: the outline of the crater at the pre-impact level (null where a ray has none).
-  auto degrees = [](double radians) { return radians * (180.0 / std::numbers::pi); };
-  json azimuths = json::array(), edges = json::array();
-  for (const auto& ray : m.rays) {
-    azimuths.push_back(degrees(ray.azimuth));
-    edges.push_back(ray.edge_radius);
-  }
-  const json outline = {{"azimuth_deg", azimuths}, {"edge_radius", edges}};
-  json boulders = json::array();
-  for (const auto& b : m.boulders) {
-    boulders.push_back({{"name", b.name},
-                        {"initial_centre", array3(b.initial_centre)},
-                        {"centre", array3(b.centre)},
-                        {"displacement", array3(b.displacement)},
-                        {"displacement_magnitude", b.displacement_magnitude},
-                        {"particles", b.particles},
-                        {"mass", b.mass},
-                        {"ejected_mass", b.ejected_mass}});
-  }
   json j = {{"crater_radius", m.crater_radius},
             {"crater_radius_uncertainty", m.crater_radius_uncertainty},
             {"radius_spread", m.radius_spread},
             {"radii", radii},
-            {"directions", directions},
+            {"directions", directions_json(m)},
             {"mean_azimuthal_radius", m.mean_azimuthal_radius},
-            {"outline", outline},
+            {"outline", outline_json(m)},
             {"asymmetry",
              {{"min_edge_radius", m.min_edge_radius},
               {"min_edge_azimuth_deg", degrees(m.min_edge_azimuth)},
@@ -700,23 +666,9 @@ std::string crater_json_text(const CraterMeasurement& m, double time) {
             {"ejected_mass", m.ejected_mass},
             {"ejected_particles", m.ejected_particles},
             {"ejected_mass_by_material", ejected_by_material},
-            {"boulders", boulders},
+            {"boulders", boulders_json(m)},
             {"warnings", m.warnings},
-            {"settings",
-             {{"rho_initial", m.rho_initial},
-              {"rho_crit", m.rho_crit},
-              {"particle_spacing", m.particle_spacing},
-              {"kernel", std::string(kernel_name(m.kernel))},
-              {"centre", {m.centre[0], m.centre[1]}},
-              {"max_radius", m.max_radius},
-              {"radial_step", m.radial_step},
-              {"vertical_step", m.vertical_step},
-              {"wall_depth", m.wall_depth},
-              {"inner_spacing", m.inner_spacing},
-              {"inner_radius", m.inner_radius},
-              {"grading", m.grading},
-              {"n_azimuths", m.rays.size()},
-              {"quarter_symmetric", m.quarter_symmetric}}}};
+            {"settings", settings_json(m)}};
   if (std::isfinite(time)) j["time"] = time;
   return j.dump(2) + "\n";
 }
