@@ -6,7 +6,9 @@
 
 #include "craterkit/common/input_error.hpp"
 
-namespace craterkit::sph::crater_detail {
+namespace craterkit::impact::crater_detail {
+
+using namespace sph;
 namespace {
 
 // Indices of the particles that count for the density (not flagged ejected); each must have a finite
@@ -122,4 +124,4 @@ void ColumnGrid::gather(double x, double y, Column& column) const {
   if (!one_group) std::sort(column.heights.begin(), column.heights.end());
 }
 
-}  // namespace craterkit::sph::crater_detail
+}  // namespace craterkit::impact::crater_detail

@@ -13,7 +13,9 @@
 
 #include "craterkit/sph/particles/particles.hpp"
 
-namespace craterkit::sph::crater_detail {
+namespace craterkit::impact::crater_detail {
+
+using namespace sph;
 
 inline constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 inline constexpr int bisection_steps = 48;  // brackets of a few spacings shrink below 1e-13 of their width
@@ -166,4 +168,4 @@ double column_surface(const Column& column, double rho_crit, double step) {
   return nan;
 }
 
-}  // namespace craterkit::sph::crater_detail
+}  // namespace craterkit::impact::crater_detail
