@@ -5,6 +5,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/format_number.hpp"
