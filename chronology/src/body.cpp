@@ -1,51 +1,37 @@
 #include "craterkit/chronology/body.hpp"
 
-#include <toml++/toml.h>
-#include <algorithm>
-#include <sstream>
+#include <limits>
 
 #include "craterkit/common/data_catalogue.hpp"
-#include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "craterkit/common/toml_table.hpp"
 
 namespace craterkit::chronology {
 namespace {
 
-void check_keys(const toml::table& t, const std::vector<std::string>& allowed, const std::string& where) {
-  for (const auto& [key, node] : t) {
-    const std::string k(key.str());
-    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(where + ": unknown key '" + k + "'; allowed: " + list);
-    }
-  }
-}
+constexpr double inf = std::numeric_limits<double>::infinity();
 
-double positive(const toml::table& t, const std::string& key, const std::string& where) {
-  const auto* node = t.get(key);
-  if (node == nullptr) throw InputError(where + ": missing key '" + key + "'");
-  const auto v = node->value<double>();
-  if (!v) throw InputError(where + ": key '" + key + "' must be a number");
-  if (!(*v > 0.0)) {
-    std::ostringstream os;
-    os << where << ": " << key << " = " << *v << " must be > 0";
-    throw InputError(os.str());
-  }
-  return *v;
-}
-
-std::optional<CollisionEnvironment> read_environment(const toml::table& t, const std::string& key,
-                                                     const std::string& file) {
-  const auto* sub = t.get_as<toml::table>(key);
-  if (sub == nullptr) return std::nullopt;
-  const std::string where = file + ": [" + key + "]";
-  check_keys(*sub, {"intrinsic_collision_probability_km2_yr", "impact_speed_m_s", "citation"}, where);
+// [main_belt] or [near_earth] (optional): where the body spends its time among the projectiles.
+std::optional<CollisionEnvironment> read_environment(TomlTable& body, const std::string& key) {
+  TomlTable t = body.table(key);
+  if (!body.contains(key)) return std::nullopt;
+  t.reject_unknown({"intrinsic_collision_probability_km2_yr", "impact_speed_m_s", "citation"});
   CollisionEnvironment env;
-  env.intrinsic_probability_km2_yr = positive(*sub, "intrinsic_collision_probability_km2_yr", where);
-  env.impact_speed = positive(*sub, "impact_speed_m_s", where);
-  env.citation = (*sub)["citation"].value_or(std::string{});
+  env.intrinsic_probability_km2_yr =
+      t.required_number("intrinsic_collision_probability_km2_yr", 0.0, inf, true);
+  env.impact_speed = t.required_number("impact_speed_m_s", 0.0, inf, true);
+  env.citation = t.text("citation", "");
+  t.finish();
   return env;
+}
+
+// [citations]: one string per value, any keys; kept as "key: text" lines.
+std::string read_citations(TomlTable citations) {
+  std::string out;
+  for (const auto& key : citations.keys()) {
+    out += key + ": " + citations.required_text(key, "a citation") + "\n";
+  }
+  return out;
 }
 
 }  // namespace
@@ -68,27 +54,19 @@ Body load_body(const std::string& name_or_path) {
 }
 
 Body load_body_file(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  const toml::table t = parse_toml_file(path);
-  check_keys(t,
-             {"name", "mean_radius_m", "bulk_density_kg_m3", "surface_gravity_m_s2", "surface_area_m2",
-              "main_belt", "near_earth", "citations"},
-             file);
+  TomlTable t = TomlTable::parse_file(path);
+  t.reject_unknown({"name", "mean_radius_m", "bulk_density_kg_m3", "surface_gravity_m_s2", "surface_area_m2",
+                    "main_belt", "near_earth", "citations"});
   Body b;
-  b.name = t["name"].value_or(path.stem().string());
-  b.mean_radius = positive(t, "mean_radius_m", file);
-  b.bulk_density = positive(t, "bulk_density_kg_m3", file);
-  b.surface_gravity = positive(t, "surface_gravity_m_s2", file);
-  b.surface_area = positive(t, "surface_area_m2", file);
-  b.main_belt = read_environment(t, "main_belt", file);
-  b.near_earth = read_environment(t, "near_earth", file);
-  if (const auto* c = t.get_as<toml::table>("citations")) {
-    for (const auto& [key, node] : *c) {
-      const auto s = node.value<std::string>();
-      if (!s) throw InputError(file + ": [citations] " + std::string(key.str()) + " must be a string");
-      b.citations += std::string(key.str()) + ": " + *s + "\n";
-    }
-  }
+  b.name = t.text("name", path.stem().string());
+  b.mean_radius = t.required_number("mean_radius_m", 0.0, inf, true);
+  b.bulk_density = t.required_number("bulk_density_kg_m3", 0.0, inf, true);
+  b.surface_gravity = t.required_number("surface_gravity_m_s2", 0.0, inf, true);
+  b.surface_area = t.required_number("surface_area_m2", 0.0, inf, true);
+  b.main_belt = read_environment(t, "main_belt");
+  b.near_earth = read_environment(t, "near_earth");
+  b.citations = read_citations(t.table("citations"));
+  t.finish();
   return b;
 }
 

@@ -1,6 +1,5 @@
 #include "craterkit/chronology/population.hpp"
 
-#include <toml++/toml.h>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,6 +9,7 @@
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "craterkit/common/toml_table.hpp"
 #include "text_table.hpp"
 
 namespace craterkit::chronology {
@@ -189,46 +189,6 @@ ImpactorPopulation power_law_population(double q, double reference_radius, doubl
 
 namespace {
 
-const std::vector<std::string>& allowed_keys() {
-  static const std::vector<std::string> keys = {"name",
-                                                "citation",
-                                                "notes",
-                                                "approximate",
-                                                "kind",
-                                                "slope",
-                                                "slopes",
-                                                "break_diameters_km",
-                                                "reference_diameter_km",
-                                                "number_larger",
-                                                "table"};
-  return keys;
-}
-
-std::string key_list() {
-  std::string s;
-  for (const auto& k : allowed_keys()) s += (s.empty() ? "" : ", ") + k;
-  return s;
-}
-
-double required_number(const toml::table& t, const std::string& key, const std::string& file) {
-  const auto* node = t.get(key);
-  if (node == nullptr) throw InputError(file + ": missing key '" + key + "'");
-  if (auto v = node->value<double>()) return *v;
-  throw InputError(file + ": key '" + key + "' must be a number");
-}
-
-std::vector<double> required_array(const toml::table& t, const std::string& key, const std::string& file) {
-  const auto* arr = t.get_as<toml::array>(key);
-  if (arr == nullptr) throw InputError(file + ": missing array key '" + key + "'");
-  std::vector<double> out;
-  for (std::size_t i = 0; i < arr->size(); ++i) {
-    auto v = arr->get(i)->value<double>();
-    if (!v) throw InputError(file + ": " + key + "[" + std::to_string(i) + "] must be a number");
-    out.push_back(*v);
-  }
-  return out;
-}
-
 CumulativeTable read_cumulative_csv(const std::filesystem::path& path) {
   const std::string file = path.string();
   const auto lines = detail::read_lines(file);
@@ -276,6 +236,26 @@ CumulativeTable read_cumulative_csv(const std::filesystem::path& path) {
   return t;
 }
 
+// kind = "power_law": slope (< -1, for a finite N(>a)), reference_diameter_km, number_larger.
+PowerLaw read_power_law(TomlTable& t) {
+  PowerLaw law;
+  law.slope = t.required_number("slope", -kInf, -1.0, false, true);
+  law.reference_radius = t.required_number("reference_diameter_km", 0.0, kInf, true) * 500.0;  // km D -> m a
+  law.number_larger = t.required_number("number_larger", 0.0, kInf, true);
+  return law;
+}
+
+// kind = "broken_power_law": slopes, break_diameters_km (validate() checks how they fit together),
+// reference_diameter_km, number_larger.
+BrokenPowerLaw read_broken_power_law(TomlTable& t) {
+  BrokenPowerLaw law;
+  law.slopes = t.required_numbers("slopes");
+  for (double d : t.required_numbers("break_diameters_km")) law.break_radii.push_back(d * 500.0);
+  law.reference_radius = t.required_number("reference_diameter_km", 0.0, kInf, true) * 500.0;
+  law.number_larger = t.required_number("number_larger", 0.0, kInf, true);
+  return law;
+}
+
 }  // namespace
 
 std::vector<std::string> population_names() {
@@ -287,46 +267,30 @@ ImpactorPopulation load_population(const std::string& name_or_path) {
 }
 
 ImpactorPopulation load_population_file(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  const toml::table t = parse_toml_file(path);
-  for (const auto& [key, node] : t) {
-    const std::string k(key.str());
-    if (std::find(allowed_keys().begin(), allowed_keys().end(), k) == allowed_keys().end()) {
-      throw InputError(file + ": unknown key '" + k + "'; allowed: " + key_list());
-    }
-  }
+  TomlTable t = TomlTable::parse_file(path);
+  // Every key of any kind first, so that a misspelt key is named as such; finish() below then rejects
+  // the keys of the other kinds.
+  t.reject_unknown({"name", "citation", "notes", "approximate", "kind", "slope", "slopes",
+                    "break_diameters_km", "reference_diameter_km", "number_larger", "table"});
   ImpactorPopulation p;
-  p.name = t["name"].value_or(path.stem().string());
-  p.citation = t["citation"].value_or(std::string{});
-  p.notes = t["notes"].value_or(std::string{});
-  if (const auto approximate = t["approximate"]; approximate) {
-    if (!approximate.is_boolean()) throw InputError(file + ": key 'approximate' must be true or false");
-    p.approximate = approximate.value_or(false);
-  }
-  const std::string kind = t["kind"].value_or(std::string{});
+  p.name = t.text("name", path.stem().string());
+  p.citation = t.text("citation", "");
+  p.notes = t.text("notes", "");
+  p.approximate = t.boolean("approximate", false);
+  const std::string kind =
+      t.required_text("kind", "the shape of the population", {"power_law", "broken_power_law", "table"});
   if (kind == "power_law") {
-    p.shape =
-        PowerLaw{required_number(t, "slope", file), required_number(t, "reference_diameter_km", file) * 500.0,
-                 required_number(t, "number_larger", file)};
+    p.shape = read_power_law(t);
   } else if (kind == "broken_power_law") {
-    BrokenPowerLaw b;
-    b.slopes = required_array(t, "slopes", file);
-    for (double d : required_array(t, "break_diameters_km", file)) b.break_radii.push_back(d * 500.0);
-    b.reference_radius = required_number(t, "reference_diameter_km", file) * 500.0;
-    b.number_larger = required_number(t, "number_larger", file);
-    p.shape = b;
-  } else if (kind == "table") {
-    const auto table_name = t["table"].value<std::string>();
-    if (!table_name) throw InputError(file + ": kind = \"table\" needs key 'table' (a CSV file name)");
-    p.shape = read_cumulative_csv(path.parent_path() / *table_name);
+    p.shape = read_broken_power_law(t);
   } else {
-    throw InputError(file + ": kind = '" + kind +
-                     "' is not known; allowed: power_law, broken_power_law, table");
+    p.shape = read_cumulative_csv(path.parent_path() / t.required_text("table", "a CSV file name"));
   }
+  t.finish();
   try {
     validate(p);
   } catch (const InputError& e) {
-    throw InputError(file + ": " + e.what());
+    throw InputError(path.string() + ": " + e.what());
   }
   return p;
 }

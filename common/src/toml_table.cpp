@@ -6,7 +6,7 @@
 
 #include <toml++/toml.h>
 
-#include "craterkit/common/format_number.hpp"
+#include "craterkit/common/checks.hpp"
 #include "craterkit/common/input_error.hpp"
 
 namespace craterkit {
@@ -90,33 +90,32 @@ double number_of(const toml::node& node, const TomlTable& table, std::string_vie
 
 }  // namespace
 
-double TomlTable::number(std::string_view k, double fallback, double lo, double hi, bool lo_open) {
+double TomlTable::number(std::string_view k, double fallback, double lo, double hi, bool lo_open,
+                         bool hi_open) {
   const auto* node = as_node(use(k));
   if (node == nullptr) return fallback;
   const double x = number_of(*node, *this, k);
-  const bool below = lo_open ? !(x > lo) : !(x >= lo);
-  if (below || !(x <= hi) || !std::isfinite(x)) {
-    fail(k, "value " + format_number(x) + " out of range: allowed " + (lo_open ? "(" : "[") +
-                format_number(lo) + ", " + format_number(hi) + "]");
-  }
+  if (!in_range(x, lo, hi, lo_open, hi_open)) out_of_range(k, x, range_text(lo, hi, lo_open, hi_open));
   return x;
 }
 
-std::optional<double> TomlTable::optional_number(std::string_view k, double lo, double hi, bool lo_open) {
+std::optional<double> TomlTable::optional_number(std::string_view k, double lo, double hi, bool lo_open,
+                                                 bool hi_open) {
   if (find(k) == nullptr) {
     used_.insert(std::string(k));
     return std::nullopt;
   }
-  return number(k, 0.0, lo, hi, lo_open);
+  return number(k, 0.0, lo, hi, lo_open, hi_open);
 }
 
-double TomlTable::required_number(std::string_view k, double lo, double hi, bool lo_open) {
-  const auto x = optional_number(k, lo, hi, lo_open);
-  if (!x) {
-    fail(k, std::string("missing: a number in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " +
-                format_number(hi) + "]");
-  }
+double TomlTable::required_number(std::string_view k, double lo, double hi, bool lo_open, bool hi_open) {
+  const auto x = optional_number(k, lo, hi, lo_open, hi_open);
+  if (!x) fail(k, "missing: a number in " + range_text(lo, hi, lo_open, hi_open));
   return *x;
+}
+
+void TomlTable::out_of_range(std::string_view k, double value, const std::string& allowed) const {
+  fail(k, out_of_range_text(value, allowed));
 }
 
 std::int64_t TomlTable::integer(std::string_view k, std::int64_t fallback, std::int64_t lo, std::int64_t hi) {
@@ -194,9 +193,11 @@ std::optional<std::vector<double>> TomlTable::numbers(std::string_view k, std::o
   return out;
 }
 
-std::vector<double> TomlTable::required_numbers(std::string_view k, std::size_t count, bool allow_infinite) {
+std::vector<double> TomlTable::required_numbers(std::string_view k, std::optional<std::size_t> count,
+                                                bool allow_infinite) {
   auto v = numbers(k, count, allow_infinite);
-  if (!v) fail(k, "missing: an array of " + std::to_string(count) + " numbers");
+  if (!v)
+    fail(k, "missing: an array of " + (count ? std::to_string(*count) + " " : std::string()) + "numbers");
   return *v;
 }
 
@@ -227,6 +228,11 @@ TomlTable TomlTable::table(std::string_view k) {
   return TomlTable(document_, node == nullptr ? nullptr : node->as_table(), key(k), source_);
 }
 
+TomlTable TomlTable::required_table(std::string_view k) {
+  if (find(k) == nullptr) fail(k, "missing: a table ([" + key(k) + "])");
+  return table(k);
+}
+
 std::vector<TomlTable> TomlTable::tables(std::string_view k) {
   const auto* node = as_node(use(k));
   std::vector<TomlTable> out;
@@ -242,16 +248,30 @@ std::vector<TomlTable> TomlTable::tables(std::string_view k) {
   return out;
 }
 
-void TomlTable::finish() const {
-  if (table_ == nullptr) return;
-  for (const auto& [k, node] : *as_table(table_)) {
+namespace {
+
+// Throws for the first key of `table` not in `allowed`, listing the allowed ones.
+void reject_keys_outside(const TomlTable& table, const toml::table* keys,
+                         const std::set<std::string>& allowed) {
+  if (keys == nullptr) return;
+  for (const auto& [k, node] : *keys) {
     const std::string name(k.str());
-    if (used_.count(name) == 0) {
+    if (allowed.count(name) == 0) {
       std::string list;
-      for (const auto& u : used_) list += (list.empty() ? "" : ", ") + u;
-      throw InputError(source_ + ": unknown key " + key(name) + " (allowed here: " + list + ")");
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw InputError(table.source() + ": unknown key " + table.key(name) + " (allowed here: " + list + ")");
     }
   }
+}
+
+}  // namespace
+
+void TomlTable::finish() const {
+  reject_keys_outside(*this, as_table(table_), used_);
+}
+
+void TomlTable::reject_unknown(const std::vector<std::string>& allowed) const {
+  reject_keys_outside(*this, as_table(table_), {allowed.begin(), allowed.end()});
 }
 
 }  // namespace craterkit

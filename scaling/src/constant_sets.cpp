@@ -1,21 +1,22 @@
 // Loader of the published constant sets in data/scaling/*.toml (schema in constant_sets.hpp).
+#include "craterkit/scaling/constant_sets.hpp"
+
 #include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <limits>
-#include <set>
 #include <string>
 #include <vector>
 
-#include <toml++/toml.h>
-
+#include "craterkit/common/checks.hpp"
 #include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
-#include "craterkit/scaling/constant_sets.hpp"
+#include "craterkit/common/toml_table.hpp"
 
 namespace craterkit::scaling {
 namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
 
 std::filesystem::path scaling_directory() {
   return data_file("scaling");
@@ -27,32 +28,51 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
-std::string required_string(const toml::table& table, const std::string& key, const std::string& where) {
-  const auto* node = table.get(key);
-  if (node == nullptr) throw InputError(where + ": key '" + key + "' is missing (a string is required)");
-  const auto value = node->value<std::string>();
-  if (!value || node->type() != toml::node_type::string || value->empty()) {
-    throw InputError(where + ": key '" + key + "' must be a non-empty string");
-  }
-  return *value;
-}
-
-double number_at(const toml::node& node, const std::string& key, const std::string& where) {
-  if (!node.is_number()) throw InputError(where + ": key '" + key + "' must be a number");
-  const double value = *node.value<double>();
-  if (!std::isfinite(value)) throw InputError(where + ": key '" + key + "' must be finite");
-  return value;
-}
-
-void reject_unknown_keys(const toml::table& table, const std::set<std::string>& allowed,
-                         const std::string& where) {
-  for (const auto& [key, node] : table) {
-    (void)node;
-    if (!allowed.contains(std::string(key.str()))) {
-      std::vector<std::string> names(allowed.begin(), allowed.end());
-      throw InputError(where + ": unknown key '" + std::string(key.str()) + "'; allowed: " + join(names));
+// not_given: the coefficients (of this form) the source does not give.
+std::vector<std::string> read_not_given(TomlTable& root, Form form) {
+  const std::vector<std::string> coefficients{coefficient_name(form, 1), coefficient_name(form, 2)};
+  const auto names = root.texts("not_given").value_or(std::vector<std::string>{});
+  for (const auto& name : names) {
+    if (std::find(coefficients.begin(), coefficients.end(), name) == coefficients.end()) {
+      root.fail("not_given", "value \"" + name + "\" not allowed: one of \"" + coefficients[0] + "\", \"" +
+                                 coefficients[1] + "\" (the coefficients of form " + to_string(form) + ")");
     }
   }
+  return names;
+}
+
+// A coefficient of [constants]: > 0, or NaN when the set lists it in not_given (and then absent).
+double read_coefficient(TomlTable& constants, const std::string& name,
+                        const std::vector<std::string>& not_given) {
+  if (std::find(not_given.begin(), not_given.end(), name) != not_given.end()) {
+    if (constants.contains(name)) constants.fail(name, "listed in not_given but also set");
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  if (!constants.contains(name)) {
+    constants.fail(name, "missing: a number in " + range_text(0.0, inf, true) +
+                             " (list it in not_given if the source does not give it)");
+  }
+  return constants.required_number(name, 0.0, inf, true);
+}
+
+// [constants]: the two coefficients of the form, mu and nu; unknown keys are reported before missing ones.
+ScalingLaw read_constants(TomlTable constants, Form form, const std::vector<std::string>& not_given) {
+  ScalingLaw law;
+  law.form = form;
+  constants.reject_unknown({coefficient_name(form, 1), coefficient_name(form, 2), "mu", "nu"});
+  law.coefficient_1 = read_coefficient(constants, coefficient_name(form, 1), not_given);
+  law.coefficient_2 = read_coefficient(constants, coefficient_name(form, 2), not_given);
+  law.mu = constants.required_number("mu", 0.0, 1.0, true);
+  law.nu = constants.required_number("nu", 0.0, inf);
+  constants.finish();
+  return law;
+}
+
+// [target] (optional): the strength and density the source gives.
+void read_target(TomlTable target, ConstantSet& set) {
+  set.strength = target.optional_number("strength", 0.0, inf);
+  set.target_density = target.optional_number("density", 0.0, inf, true);
+  target.finish();
 }
 
 }  // namespace
@@ -66,95 +86,32 @@ ConstantSet load_constant_set(const std::string& name) {
   if (std::find(names.begin(), names.end(), name) == names.end()) {
     throw InputError("scaling constant set '" + name + "' is not known; available: " + join(names));
   }
-  ConstantSet set = load_constant_set_file(scaling_directory() / (name + ".toml"));
+  const auto path = scaling_directory() / (name + ".toml");
+  ConstantSet set = load_constant_set_file(path);
   if (set.name != name) {
-    throw InputError((scaling_directory() / (name + ".toml")).string() + ": key 'name' is '" + set.name +
-                     "' but must equal the file name '" + name + "'");
+    throw InputError(path.string() + ": name: value \"" + set.name +
+                     "\" not allowed: must equal the file name \"" + name + "\"");
   }
   return set;
 }
 
 ConstantSet load_constant_set_file(const std::filesystem::path& path) {
-  const std::string where = path.string();
-  const toml::table root = parse_toml_file(path);
-  reject_unknown_keys(root,
-                      {"name", "description", "citation", "form", "conventions", "note", "not_given",
-                       "constants", "target", "published"},
-                      where);
+  TomlTable root = TomlTable::parse_file(path);
+  root.reject_unknown({"name", "description", "citation", "form", "conventions", "note", "not_given",
+                       "constants", "target", "published"});
   ConstantSet set;
-  set.name = required_string(root, "name", where);
-  set.description = required_string(root, "description", where);
-  set.citation = required_string(root, "citation", where);
-  set.conventions = required_string(root, "conventions", where);
-  if (root.contains("note")) set.note = required_string(root, "note", where);
-  const std::string form_text = required_string(root, "form", where);
-  try {
-    set.law.form = form_from_string(form_text);
-  } catch (const InputError& error) {
-    throw InputError(where + ": key 'form': " + error.what());
-  }
-  const bool holsapple = set.law.form == Form::holsapple;
-  const std::string c1 = holsapple ? "K1" : "H1";
-  const std::string c2 = holsapple ? "K2" : "H2";
-
-  if (const auto* node = root.get("not_given")) {
-    const auto* array = node->as_array();
-    if (array == nullptr) throw InputError(where + ": key 'not_given' must be an array of constant names");
-    for (const auto& item : *array) {
-      const auto text = item.value<std::string>();
-      if (!text || (*text != c1 && *text != c2)) {
-        throw InputError(where + ": key 'not_given' may only list " + c1 + " or " + c2 + " (form " +
-                         form_text + ")");
-      }
-      set.not_given.push_back(*text);
-    }
-  }
-
-  const auto* constants = root.get_as<toml::table>("constants");
-  if (constants == nullptr) throw InputError(where + ": table [constants] is missing");
-  reject_unknown_keys(*constants, {c1, c2, "mu", "nu"}, where + " [constants]");
-  const auto constant = [&](const std::string& key) -> double {
-    const bool absent_by_design =
-        std::find(set.not_given.begin(), set.not_given.end(), key) != set.not_given.end();
-    const auto* node = constants->get(key);
-    if (absent_by_design) {
-      if (node != nullptr)
-        throw InputError(where + ": [constants] " + key + " is listed in not_given but also set");
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-    if (node == nullptr) {
-      throw InputError(where + ": [constants] key '" + key +
-                       "' is missing (list it in not_given if the source " + "does not give it)");
-    }
-    const double value = number_at(*node, key, where + " [constants]");
-    if (key == "nu" ? value < 0.0 : value <= 0.0) {
-      throw InputError(where + ": [constants] " + key + " = " + std::to_string(value) + " is out of range (" +
-                       (key == "nu" ? ">= 0" : "> 0") + ")");
-    }
-    return value;
-  };
-  set.law.coefficient_1 = constant(c1);
-  set.law.coefficient_2 = constant(c2);
-  set.law.mu = constant("mu");
-  set.law.nu = constant("nu");
-  if (set.law.mu > 1.0) throw InputError(where + ": [constants] mu must be <= 1 (1/3 .. 2/3 expected)");
-
-  if (const auto* node = root.get("target")) {
-    const auto* target = node->as_table();
-    if (target == nullptr) throw InputError(where + ": key 'target' must be a table");
-    reject_unknown_keys(*target, {"strength", "density"}, where + " [target]");
-    if (const auto* strength = target->get("strength")) {
-      set.strength = number_at(*strength, "strength", where + " [target]");
-      if (*set.strength < 0.0) throw InputError(where + ": [target] strength must be >= 0 Pa");
-    }
-    if (const auto* density = target->get("density")) {
-      set.target_density = number_at(*density, "density", where + " [target]");
-      if (*set.target_density <= 0.0) throw InputError(where + ": [target] density must be > 0 kg/m^3");
-    }
-  }
-  if (const auto* node = root.get("published"); node != nullptr && !node->is_table()) {
-    throw InputError(where + ": key 'published' must be a table");
-  }
+  set.name = root.required_text("name", "the file stem");
+  set.description = root.required_text("description", "the target material in words");
+  set.citation = root.required_text("citation", "the source of the constants");
+  set.conventions = root.required_text("conventions", "what the constants mean");
+  set.note = root.text("note", "");
+  const Form form =
+      form_from_string(root.required_text("form", "the form of the law", {"holsapple", "hh2011"}));
+  set.not_given = read_not_given(root, form);
+  set.law = read_constants(root.required_table("constants"), form, set.not_given);
+  read_target(root.table("target"), set);
+  (void)root.table("published");  // values as printed in the source: any keys, not read here
+  root.finish();
   return set;
 }
 

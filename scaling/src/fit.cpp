@@ -203,6 +203,303 @@ std::vector<int> null_space_parameters(ceres::Problem& problem, std::array<doubl
   return {flagged.begin(), flagged.end()};
 }
 
+// ---------------------------------------------------------------- the steps of fit_scaling_law
+
+using Values = std::array<double, kParameterCount>;  // internal parametrisation
+using Flags = std::array<bool, kParameterCount>;
+
+// What the fit works on, once the options and the table have been checked.
+struct FitSetup {
+  std::array<std::string, kParameterCount> names;  // K1, K2 or H1, H2, then mu, nu, Y
+  Flags fixed{};                                   // held at the user's value (--fix)
+  Flags held{};                                    // fixed, or not in the model (Y without a shared strength)
+  Values base{std::log(1.0), std::log(1.0), 0.45, 0.4, 0.0};  // the fixed ones at their given values
+  std::vector<RowTerms> rows;
+  bool weighted = false;  // the table gives crater_radius_sigma
+  int free_count = 0;
+  // Centre of the starting values of a shared Y: the rows' median strength, 1 Pa without strengths.
+  double ln_y_typical = 0.0;
+};
+
+// The fixed parameters, by name: each a parameter of this form (Y only with a shared strength), fixed
+// once, at a value the law allows; it then keeps that value in every solve.
+void apply_fixed(const FitOptions& options, FitSetup& setup) {
+  const auto& names = setup.names;
+  for (const auto& [name, value] : options.fixed) {
+    const auto it = std::find(names.begin(), names.end(), name);
+    const bool y_allowed = options.shared_strength;
+    if (it == names.end() || (name == "Y" && !y_allowed)) {
+      throw InputError("cannot fix '" + name + "': allowed names for the " + to_string(options.form) +
+                       " form are " + names[0] + ", " + names[1] + ", mu, nu" +
+                       (y_allowed ? ", Y" : " (and Y with a shared strength)"));
+    }
+    const int index = static_cast<int>(it - names.begin());
+    if (setup.fixed[index]) throw InputError("parameter '" + name + "' is fixed twice");
+    const bool ok =
+        std::isfinite(value) && (index == kNu ? value >= 0.0 : value > 0.0) && (index != kMu || value <= 1.0);
+    if (!ok) {
+      throw InputError("fixed " + name + " = " + std::to_string(value) + " is not allowed: must be " +
+                       (index == kNu   ? "finite and >= 0"
+                        : index == kMu ? "in (0, 1]"
+                                       : "finite and > 0"));
+    }
+    setup.fixed[index] = true;
+    setup.base[index] = is_log_parameter(index) ? std::log(value) : value;
+  }
+}
+
+// The table's rows in the residual's form. A row needs gravity or a strength, else the law has no finite
+// crater; the median of the rows' strengths centres the starting values of a shared Y.
+void read_rows(const RadiiTable& table, const FitOptions& options, FitSetup& setup) {
+  setup.weighted = table.has_sigma();
+  std::vector<double> strengths;
+  for (const auto& row : table.rows) {
+    const bool has_strength = options.shared_strength || row.target.strength > 0.0;
+    if (!(row.target.gravity > 0.0) && !has_strength) {
+      throw InputError(table.source + ":" + std::to_string(row.line) +
+                       ": gravity and strength are both 0, for which the law has no finite crater");
+    }
+    if (row.target.strength > 0.0) strengths.push_back(row.target.strength);
+    setup.rows.push_back(row_terms(row, setup.weighted));
+  }
+  if (!strengths.empty()) {
+    std::nth_element(strengths.begin(), strengths.begin() + strengths.size() / 2, strengths.end());
+    setup.ln_y_typical = std::log(strengths[strengths.size() / 2]);
+  }
+}
+
+// Checks the options and the table and gathers what the fit works on: the number of starts, the fixed
+// parameters, every row, then that something is free and that there are more rows than free parameters
+// (so that chi^2/dof exists).
+FitSetup prepare_fit(const RadiiTable& table, const FitOptions& options) {
+  FitSetup setup;
+  setup.names = parameter_names(options.form);
+  if (options.starts < 1) throw InputError("starts = " + std::to_string(options.starts) + ": must be >= 1");
+  apply_fixed(options, setup);
+  setup.held = setup.fixed;
+  if (!options.shared_strength) setup.held[kY] = true;  // unused
+  read_rows(table, options, setup);
+  for (int i = 0; i < kParameterCount; ++i) setup.free_count += setup.held[i] ? 0 : 1;
+  if (setup.free_count == 0) throw InputError("every parameter is fixed: nothing to fit");
+  if (static_cast<int>(setup.rows.size()) <= setup.free_count) {
+    throw InputError(table.source + ": " + std::to_string(setup.rows.size()) + " rows for " +
+                     std::to_string(setup.free_count) + " free parameters; at least " +
+                     std::to_string(setup.free_count + 1) + " rows are required");
+  }
+  return setup;
+}
+
+// The solver for every solve of the fit (starts and profiles): dense QR for these few parameters,
+// tolerances far below any scatter of real data so that a solve stops at the minimum and not short of
+// it, silent, and on one thread so that the numbers do not depend on the machine's thread count.
+ceres::Solver::Options solver_options() {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 500;
+  options.function_tolerance = 1e-15;
+  options.gradient_tolerance = 1e-15;
+  options.parameter_tolerance = 1e-14;
+  options.logging_type = ceres::SILENT;
+  options.num_threads = 1;
+  return options;
+}
+
+// The lowest minimum found and how many starts reached it.
+struct Minimum {
+  Values values{};
+  double cost = std::numeric_limits<double>::infinity();
+  int starts_at_minimum = 0;  // within 1e-6 of the cost, relative
+};
+
+// Solves from every starting point and keeps the lowest cost: the law is non-linear in mu and nu, so a
+// single local solve could report a local minimum. Starts whose solve fails are skipped; the number of
+// starts that reached the minimum says how clearly it stands out.
+Minimum multi_start(const FitSetup& setup, const FitOptions& options, const ceres::Solver::Options& solver) {
+  Minimum best;
+  std::vector<double> costs;
+  for (auto start : starting_points(options, setup.base, setup.fixed, setup.ln_y_typical)) {
+    ceres::Problem problem;
+    build_problem(problem, setup.rows, options, start, setup.held);
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+    if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost)) continue;
+    costs.push_back(summary.final_cost);
+    if (summary.final_cost < best.cost) {
+      best.cost = summary.final_cost;
+      best.values = start;
+    }
+  }
+  if (!std::isfinite(best.cost)) throw std::runtime_error("the scaling fit failed from every starting point");
+  for (double cost : costs) {
+    if (cost - best.cost <= 1e-6 * std::max(best.cost, 1e-12)) ++best.starts_at_minimum;
+  }
+  return best;
+}
+
+// Each row's residual at the minimum (normalised, in ln R, and the model radius), chi^2, the degrees of
+// freedom, and the scale of the covariance: 1 when the table gives sigmas, else chi^2/dof (the scatter
+// of the data then sets the error bars).
+void add_residuals(const RadiiTable& table, const FitSetup& setup, const FitOptions& options,
+                   const Values& values, FitResult& result) {
+  double chi2 = 0.0;
+  for (std::size_t i = 0; i < setup.rows.size(); ++i) {
+    LogRadiusResidual functor{options.form, options.shared_strength, setup.rows[i]};
+    double normalized = 0.0;
+    functor(&values[kC1], &values[kC2], &values[kMu], &values[kNu], &values[kY], &normalized);
+    FitResidual r;
+    r.line = table.rows[i].line;
+    r.observed = table.rows[i].crater_radius;
+    r.normalized = normalized;
+    r.log_residual = normalized / setup.rows[i].inverse_sigma;
+    r.model = r.observed * std::exp(r.log_residual);
+    result.residuals.push_back(r);
+    chi2 += normalized * normalized;
+  }
+  result.chi2 = chi2;
+  result.dof = static_cast<int>(setup.rows.size()) - setup.free_count;
+  result.sigma_scale = setup.weighted ? 1.0 : chi2 / result.dof;
+}
+
+// The parameters still free: neither held nor found undetermined, in index order.
+std::vector<int> free_parameters(const Flags& held, const std::vector<bool>& undetermined) {
+  std::vector<int> out;
+  for (int i = 0; i < kParameterCount; ++i) {
+    if (!held[i] && !undetermined[i]) out.push_back(i);
+  }
+  return out;
+}
+
+// Determination, test 1 (rank): flags the parameters along directions the Jacobian at the minimum cannot
+// see at all, one per direction and round, until the rest has full rank.
+void flag_null_space(ceres::Problem& problem, Values& values, const Flags& held,
+                     std::vector<bool>& undetermined) {
+  for (int round = 0; round < kParameterCount; ++round) {
+    const auto free = free_parameters(held, undetermined);
+    if (free.empty()) break;
+    const auto flagged = null_space_parameters(problem, values, free);
+    if (flagged.empty()) break;
+    for (int index : flagged) undetermined[index] = true;
+  }
+}
+
+// Determination, test 2 (profile): chi^2 (others re-optimised) must rise by 4 (2 sigma) on both sides of
+// the minimum within a window of 4 natural scales, clamped to the bounds: mu's window spans its whole range,
+// so mu counts as determined only where the data exclude both 1/3 and 2/3 at 2 sigma (a 2-sigma interval
+// that reaches a bound is set by the bound, not by the data). Only a side where the minimum sits on the
+// bound is not tested.
+bool profile_rises(int index, const FitSetup& setup, const FitOptions& options,
+                   const ceres::Solver::Options& solver, const Values& values, double best_cost,
+                   double sigma_scale, const std::vector<bool>& undetermined) {
+  const double window = 4.0 * determination_scale(index);
+  for (const double sign : {-1.0, 1.0}) {
+    Values trial = values;
+    trial[index] = clamp_start(index, values[index] + sign * window);
+    if (std::abs(trial[index] - values[index]) < 1e-9) continue;
+    Flags trial_held = setup.held;
+    trial_held[index] = true;
+    for (int i = 0; i < kParameterCount; ++i) trial_held[i] = trial_held[i] || undetermined[i];
+    ceres::Problem profile;
+    build_problem(profile, setup.rows, options, trial, trial_held);
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &profile, &summary);
+    const double delta_chi2 = 2.0 * (summary.final_cost - best_cost) / sigma_scale;
+    if (!(delta_chi2 >= 4.0)) return false;
+  }
+  return true;
+}
+
+// Flags every free parameter whose profile does not rise on both sides; later profiles hold the ones
+// flagged before them.
+void flag_flat_profiles(const FitSetup& setup, const FitOptions& options,
+                        const ceres::Solver::Options& solver, const Values& values, double best_cost,
+                        double sigma_scale, std::vector<bool>& undetermined) {
+  for (int index : free_parameters(setup.held, undetermined)) {
+    if (!profile_rises(index, setup, options, solver, values, best_cost, sigma_scale, undetermined)) {
+      undetermined[index] = true;
+    }
+  }
+}
+
+// Determination, step 3: the Ceres covariance of the determined free parameters with the undetermined
+// ones held at their values (a covariance conditional on them), scaled by sigma_scale. Where Ceres finds
+// it numerically singular although the tests above passed, the last free parameter is given up in turn.
+Eigen::MatrixXd conditional_covariance(ceres::Problem& problem, Values& values, const Flags& held,
+                                       std::vector<bool>& undetermined, double sigma_scale) {
+  Eigen::MatrixXd internal_covariance;
+  for (int round = 0; round < kParameterCount; ++round) {
+    const auto free = free_parameters(held, undetermined);
+    if (free.empty()) break;
+    for (int i = 0; i < kParameterCount; ++i) {
+      if (undetermined[i] && !problem.IsParameterBlockConstant(&values[i]))
+        problem.SetParameterBlockConstant(&values[i]);
+    }
+    ceres::Covariance::Options covariance_options;
+    covariance_options.algorithm_type = ceres::DENSE_SVD;
+    covariance_options.null_space_rank = 0;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<const double*> blocks;
+    for (int index : free) blocks.push_back(&values[index]);
+    if (covariance.Compute(blocks, &problem)) {
+      internal_covariance.resize(static_cast<Eigen::Index>(free.size()),
+                                 static_cast<Eigen::Index>(free.size()));
+      covariance.GetCovarianceMatrix(blocks, internal_covariance.data());
+      internal_covariance *= sigma_scale;
+      break;
+    }
+    undetermined[free.back()] = true;
+  }
+  return internal_covariance;
+}
+
+// The parameters in natural units: c = e^(ln c) for the coefficients and Y.
+Values natural_values(const Values& values) {
+  Values natural{};
+  for (int i = 0; i < kParameterCount; ++i)
+    natural[i] = is_log_parameter(i) ? std::exp(values[i]) : values[i];
+  return natural;
+}
+
+// One entry per parameter of the model (Y only with a shared strength): its value and what the fit knows
+// of it. sigma is 0 when fixed and infinite until the covariance gives one; at_bound marks mu or nu on a
+// bound of its range, where sigma means little.
+void add_parameters(const FitSetup& setup, const FitOptions& options, const Values& natural,
+                    const std::vector<bool>& undetermined, FitResult& result) {
+  const int parameter_count = options.shared_strength ? kParameterCount : kParameterCount - 1;
+  for (int i = 0; i < parameter_count; ++i) {
+    FittedParameter p;
+    p.name = setup.names[i];
+    p.value = natural[i];
+    p.fixed = setup.fixed[i];
+    p.determined = !undetermined[i];
+    p.sigma = p.fixed ? 0.0 : std::numeric_limits<double>::infinity();
+    if (i == kMu) p.at_bound = !p.fixed && (p.value - kMuLower < 1e-6 || kMuUpper - p.value < 1e-6);
+    if (i == kNu) p.at_bound = !p.fixed && (p.value - kNuLower < 1e-6 || kNuUpper - p.value < 1e-6);
+    result.parameters.push_back(p);
+  }
+}
+
+// The covariance and correlation of the free parameters in natural units, to first order
+// (sigma_c = c sigma_ln c), and their sigmas; nothing when the covariance could not be computed.
+void add_covariance(const FitSetup& setup, const std::vector<int>& free, const Values& natural,
+                    const Eigen::MatrixXd& internal_covariance, FitResult& result) {
+  const auto n = static_cast<Eigen::Index>(free.size());
+  if (internal_covariance.rows() != n || n == 0) return;
+  Eigen::VectorXd jacobian(n);
+  for (Eigen::Index k = 0; k < n; ++k) jacobian(k) = is_log_parameter(free[k]) ? natural[free[k]] : 1.0;
+  result.covariance = jacobian.asDiagonal() * internal_covariance * jacobian.asDiagonal();
+  result.correlation.resize(n, n);
+  for (Eigen::Index r = 0; r < n; ++r) {
+    for (Eigen::Index c = 0; c < n; ++c) {
+      result.correlation(r, c) =
+          result.covariance(r, c) / std::sqrt(result.covariance(r, r) * result.covariance(c, c));
+    }
+  }
+  for (Eigen::Index k = 0; k < n; ++k) {
+    result.correlation_names.push_back(setup.names[free[k]]);
+    result.parameters[free[k]].sigma = std::sqrt(result.covariance(k, k));
+  }
+}
+
 }  // namespace
 
 const FittedParameter& FitResult::parameter(const std::string& name) const {
@@ -228,223 +525,31 @@ std::optional<double> FitResult::strength() const {
 }
 
 FitResult fit_scaling_law(const RadiiTable& table, const FitOptions& options) {
-  const auto names = parameter_names(options.form);
-  if (options.starts < 1) throw InputError("starts = " + std::to_string(options.starts) + ": must be >= 1");
-
-  // Fixed parameters, by name.
-  std::array<bool, kParameterCount> fixed{};
-  std::array<double, kParameterCount> base{std::log(1.0), std::log(1.0), 0.45, 0.4, 0.0};
-  for (const auto& [name, value] : options.fixed) {
-    const auto it = std::find(names.begin(), names.end(), name);
-    const bool y_allowed = options.shared_strength;
-    if (it == names.end() || (name == "Y" && !y_allowed)) {
-      throw InputError("cannot fix '" + name + "': allowed names for the " + to_string(options.form) +
-                       " form are " + names[0] + ", " + names[1] + ", mu, nu" +
-                       (y_allowed ? ", Y" : " (and Y with a shared strength)"));
-    }
-    const int index = static_cast<int>(it - names.begin());
-    if (fixed[index]) throw InputError("parameter '" + name + "' is fixed twice");
-    const bool ok =
-        std::isfinite(value) && (index == kNu ? value >= 0.0 : value > 0.0) && (index != kMu || value <= 1.0);
-    if (!ok) {
-      throw InputError("fixed " + name + " = " + std::to_string(value) + " is not allowed: must be " +
-                       (index == kNu   ? "finite and >= 0"
-                        : index == kMu ? "in (0, 1]"
-                                       : "finite and > 0"));
-    }
-    fixed[index] = true;
-    base[index] = is_log_parameter(index) ? std::log(value) : value;
-  }
-  std::array<bool, kParameterCount> held = fixed;
-  if (!options.shared_strength) held[kY] = true;  // unused
-
-  const bool weighted = table.has_sigma();
-  std::vector<RowTerms> rows;
-  std::vector<double> strengths;
-  for (const auto& row : table.rows) {
-    const bool has_strength = options.shared_strength || row.target.strength > 0.0;
-    if (!(row.target.gravity > 0.0) && !has_strength) {
-      throw InputError(table.source + ":" + std::to_string(row.line) +
-                       ": gravity and strength are both 0, for which the law has no finite crater");
-    }
-    if (row.target.strength > 0.0) strengths.push_back(row.target.strength);
-    rows.push_back(row_terms(row, weighted));
-  }
-  int free_count = 0;
-  for (int i = 0; i < kParameterCount; ++i) free_count += held[i] ? 0 : 1;
-  if (free_count == 0) throw InputError("every parameter is fixed: nothing to fit");
-  if (static_cast<int>(rows.size()) <= free_count) {
-    throw InputError(table.source + ": " + std::to_string(rows.size()) + " rows for " +
-                     std::to_string(free_count) + " free parameters; at least " +
-                     std::to_string(free_count + 1) + " rows are required");
-  }
-  double ln_y_typical = 0.0;  // 1 Pa unless the table has strengths
-  if (!strengths.empty()) {
-    std::nth_element(strengths.begin(), strengths.begin() + strengths.size() / 2, strengths.end());
-    ln_y_typical = std::log(strengths[strengths.size() / 2]);
-  }
-
-  ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_QR;
-  solver_options.max_num_iterations = 500;
-  solver_options.function_tolerance = 1e-15;
-  solver_options.gradient_tolerance = 1e-15;
-  solver_options.parameter_tolerance = 1e-14;
-  solver_options.logging_type = ceres::SILENT;
-  solver_options.num_threads = 1;
-
+  const FitSetup setup = prepare_fit(table, options);
+  const ceres::Solver::Options solver = solver_options();
   FitResult result;
   result.form = options.form;
   result.shared_strength = options.shared_strength;
-  result.weighted = weighted;
+  result.weighted = setup.weighted;
   result.starts = options.starts;
+  const Minimum minimum = multi_start(setup, options, solver);
+  result.starts_at_minimum = minimum.starts_at_minimum;
 
-  double best_cost = std::numeric_limits<double>::infinity();
-  std::array<double, kParameterCount> best{};
-  std::vector<double> costs;
-  for (auto start : starting_points(options, base, fixed, ln_y_typical)) {
-    ceres::Problem problem;
-    build_problem(problem, rows, options, start, held);
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver_options, &problem, &summary);
-    if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost)) continue;
-    costs.push_back(summary.final_cost);
-    if (summary.final_cost < best_cost) {
-      best_cost = summary.final_cost;
-      best = start;
-    }
-  }
-  if (!std::isfinite(best_cost)) throw std::runtime_error("the scaling fit failed from every starting point");
-  for (double cost : costs) {
-    if (cost - best_cost <= 1e-6 * std::max(best_cost, 1e-12)) ++result.starts_at_minimum;
-  }
-
-  // Residuals and chi^2 at the minimum.
+  // The problem at the minimum, whose Jacobian and covariance say which parameters the data determine
+  // (see fit.hpp) and how well.
   ceres::Problem problem;
-  std::array<double, kParameterCount> values = best;
-  build_problem(problem, rows, options, values, held);
-  double chi2 = 0.0;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    LogRadiusResidual functor{options.form, options.shared_strength, rows[i]};
-    double normalized = 0.0;
-    functor(&values[kC1], &values[kC2], &values[kMu], &values[kNu], &values[kY], &normalized);
-    FitResidual r;
-    r.line = table.rows[i].line;
-    r.observed = table.rows[i].crater_radius;
-    r.normalized = normalized;
-    r.log_residual = normalized / rows[i].inverse_sigma;
-    r.model = r.observed * std::exp(r.log_residual);
-    result.residuals.push_back(r);
-    chi2 += normalized * normalized;
-  }
-  result.chi2 = chi2;
-  result.dof = static_cast<int>(rows.size()) - free_count;
-  result.sigma_scale = weighted ? 1.0 : chi2 / result.dof;
-
-  // Which free parameters the data determine (see fit.hpp), then the covariance of those.
+  Values values = minimum.values;
+  build_problem(problem, setup.rows, options, values, setup.held);
+  add_residuals(table, setup, options, values, result);
   std::vector<bool> undetermined(kParameterCount, false);
-  const auto free_parameters = [&] {
-    std::vector<int> out;
-    for (int i = 0; i < kParameterCount; ++i) {
-      if (!held[i] && !undetermined[i]) out.push_back(i);
-    }
-    return out;
-  };
-  // 1. Rank: a direction the Jacobian cannot see at all.
-  for (int round = 0; round < kParameterCount; ++round) {
-    const auto free = free_parameters();
-    if (free.empty()) break;
-    const auto flagged = null_space_parameters(problem, values, free);
-    if (flagged.empty()) break;
-    for (int index : flagged) undetermined[index] = true;
-  }
-  // 2. Profile: chi^2 (others re-optimised) must rise by 4 (2 sigma) on both sides of the minimum within
-  //    a window of 4 natural scales, clamped to the bounds: mu's window spans its whole range, so mu counts
-  //    as determined only where the data exclude both 1/3 and 2/3 at 2 sigma (a 2-sigma interval that
-  //    reaches a bound is set by the bound, not by the data). Only a side where the minimum sits on the
-  //    bound is not tested.
-  const auto profile_rises = [&](int index) {
-    const double window = 4.0 * determination_scale(index);
-    for (const double sign : {-1.0, 1.0}) {
-      std::array<double, kParameterCount> trial = values;
-      trial[index] = clamp_start(index, values[index] + sign * window);
-      if (std::abs(trial[index] - values[index]) < 1e-9) continue;
-      std::array<bool, kParameterCount> trial_held = held;
-      trial_held[index] = true;
-      for (int i = 0; i < kParameterCount; ++i) trial_held[i] = trial_held[i] || undetermined[i];
-      ceres::Problem profile;
-      build_problem(profile, rows, options, trial, trial_held);
-      ceres::Solver::Summary summary;
-      ceres::Solve(solver_options, &profile, &summary);
-      const double delta_chi2 = 2.0 * (summary.final_cost - best_cost) / result.sigma_scale;
-      if (!(delta_chi2 >= 4.0)) return false;
-    }
-    return true;
-  };
-  for (int index : free_parameters()) {
-    if (!profile_rises(index)) undetermined[index] = true;
-  }
-  // 3. Ceres covariance of the rest, with the undetermined ones held at their values (conditional).
-  std::vector<int> free;
-  Eigen::MatrixXd internal_covariance;
-  for (int round = 0; round < kParameterCount; ++round) {
-    free = free_parameters();
-    if (free.empty()) break;
-    for (int i = 0; i < kParameterCount; ++i) {
-      if (undetermined[i] && !problem.IsParameterBlockConstant(&values[i]))
-        problem.SetParameterBlockConstant(&values[i]);
-    }
-    ceres::Covariance::Options covariance_options;
-    covariance_options.algorithm_type = ceres::DENSE_SVD;
-    covariance_options.null_space_rank = 0;
-    ceres::Covariance covariance(covariance_options);
-    std::vector<const double*> blocks;
-    for (int index : free) blocks.push_back(&values[index]);
-    if (covariance.Compute(blocks, &problem)) {
-      internal_covariance.resize(static_cast<Eigen::Index>(free.size()),
-                                 static_cast<Eigen::Index>(free.size()));
-      covariance.GetCovarianceMatrix(blocks, internal_covariance.data());
-      internal_covariance *= result.sigma_scale;
-      break;
-    }
-    // Numerically singular although the tests above passed: give up the last free parameter.
-    undetermined[free.back()] = true;
-  }
-  free = free_parameters();
+  flag_null_space(problem, values, setup.held, undetermined);
+  flag_flat_profiles(setup, options, solver, values, minimum.cost, result.sigma_scale, undetermined);
+  const Eigen::MatrixXd internal_covariance =
+      conditional_covariance(problem, values, setup.held, undetermined, result.sigma_scale);
 
-  // Natural units: c = e^(ln c), so sigma_c = c sigma_ln c (first order).
-  std::array<double, kParameterCount> natural{};
-  for (int i = 0; i < kParameterCount; ++i)
-    natural[i] = is_log_parameter(i) ? std::exp(values[i]) : values[i];
-  const int parameter_count = options.shared_strength ? kParameterCount : kParameterCount - 1;
-  for (int i = 0; i < parameter_count; ++i) {
-    FittedParameter p;
-    p.name = names[i];
-    p.value = natural[i];
-    p.fixed = fixed[i];
-    p.determined = !undetermined[i];
-    p.sigma = p.fixed ? 0.0 : std::numeric_limits<double>::infinity();
-    if (i == kMu) p.at_bound = !p.fixed && (p.value - kMuLower < 1e-6 || kMuUpper - p.value < 1e-6);
-    if (i == kNu) p.at_bound = !p.fixed && (p.value - kNuLower < 1e-6 || kNuUpper - p.value < 1e-6);
-    result.parameters.push_back(p);
-  }
-  const auto n = static_cast<Eigen::Index>(free.size());
-  if (internal_covariance.rows() == n && n > 0) {
-    Eigen::VectorXd jacobian(n);
-    for (Eigen::Index k = 0; k < n; ++k) jacobian(k) = is_log_parameter(free[k]) ? natural[free[k]] : 1.0;
-    result.covariance = jacobian.asDiagonal() * internal_covariance * jacobian.asDiagonal();
-    result.correlation.resize(n, n);
-    for (Eigen::Index r = 0; r < n; ++r) {
-      for (Eigen::Index c = 0; c < n; ++c) {
-        result.correlation(r, c) =
-            result.covariance(r, c) / std::sqrt(result.covariance(r, r) * result.covariance(c, c));
-      }
-    }
-    for (Eigen::Index k = 0; k < n; ++k) {
-      result.correlation_names.push_back(names[free[k]]);
-      result.parameters[free[k]].sigma = std::sqrt(result.covariance(k, k));
-    }
-  }
+  const Values natural = natural_values(values);
+  add_parameters(setup, options, natural, undetermined, result);
+  add_covariance(setup, free_parameters(setup.held, undetermined), natural, internal_covariance, result);
   return result;
 }
 

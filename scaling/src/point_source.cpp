@@ -4,6 +4,7 @@
 #include <sstream>
 #include <string>
 
+#include "craterkit/common/checks.hpp"
 #include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/point_source.hpp"
@@ -11,20 +12,6 @@
 
 namespace craterkit::scaling {
 namespace {
-
-void require_positive(double value, const char* what) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string(what) + " = " + format_number(value) +
-                     " is not allowed: must be a finite number > 0");
-  }
-}
-
-void require_non_negative(double value, const char* what) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string(what) + " = " + format_number(value) +
-                     " is not allowed: must be a finite number >= 0");
-  }
-}
 
 void check_inputs(const Impactor& impactor, const Target& target) {
   require_positive(impactor.radius, "impactor radius");
@@ -89,16 +76,10 @@ ScalingLaw convert(const ScalingLaw& law, Form to) {
 }
 
 void validate(const ScalingLaw& law) {
-  const auto check = [&](double value, const std::string& name, const char* allowed, bool ok) {
-    if (!ok || !std::isfinite(value)) {
-      throw InputError("scaling constant " + name + " = " + format_number(value) +
-                       " is not allowed: must be " + allowed);
-    }
-  };
-  check(law.coefficient_1, coefficient_name(law.form, 1), "a finite number > 0", law.coefficient_1 > 0.0);
-  check(law.coefficient_2, coefficient_name(law.form, 2), "a finite number > 0", law.coefficient_2 > 0.0);
-  check(law.mu, "mu", "a finite number > 0 (1/3 momentum .. 2/3 energy scaling)", law.mu > 0.0);
-  check(law.nu, "nu", "a finite number >= 0 (about 0.4)", law.nu >= 0.0);
+  require_positive(law.coefficient_1, "scaling constant " + coefficient_name(law.form, 1));
+  require_positive(law.coefficient_2, "scaling constant " + coefficient_name(law.form, 2));
+  require_positive(law.mu, "scaling constant mu (1/3 momentum .. 2/3 energy scaling)");
+  require_non_negative(law.nu, "scaling constant nu (about 0.4)");
 }
 
 PiGroups pi_groups(const Impactor& impactor, const Target& target) {

@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "craterkit/common/checks.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/impact/graded_target.hpp"
 #include "craterkit/impact/lithostatic.hpp"
@@ -38,10 +39,6 @@ std::string number_text(double v) {
   throw InputError("impact." + key + ": " + what);
 }
 
-void require_positive(double v, const std::string& key) {
-  if (!(v > 0.0) || !std::isfinite(v)) fail(key, "value " + number_text(v) + " out of range: must be > 0");
-}
-
 double reference_density(const Material& material, const std::string& key) {
   const auto reference = solid_reference(material.eos);
   if (!reference) {
@@ -63,9 +60,7 @@ void validate_grading(const ImpactSetup& s) {
                               number_text(s.particle_spacing) +
                               ") below particle_spacing, the outer spacing (0: uniform lattice)");
   }
-  if (!(s.grading > 0.0 && s.grading <= 0.2)) {
-    fail("grading", "value " + number_text(s.grading) + " out of range: allowed (0, 0.2]");
-  }
+  require_in_range(s.grading, "impact.grading", 0.0, 0.2, true);
   if (!(s.inner_radius >= 0.0) || !std::isfinite(s.inner_radius)) {
     fail("inner_radius", "value " + number_text(s.inner_radius) + " out of range: must be >= 0 (0: 8 dx0)");
   }
@@ -382,16 +377,12 @@ Material density_scaled_material(const Material& material, double k) {
 }
 
 ImpactSummary impact_projectile_summary(const ImpactSetup& s, double projectile_reference_density) {
-  require_positive(s.projectile_mass, "projectile_mass");
-  require_positive(s.projectile_density, "projectile_density");
-  require_positive(s.impact_speed, "impact_speed");
-  require_positive(s.particle_spacing, "particle_spacing");
-  if (!(s.impact_angle >= 0.0 && s.impact_angle < 90.0)) {
-    fail("impact_angle", "value " + number_text(s.impact_angle) + " out of range: allowed [0, 90) degrees");
-  }
-  if (!(s.coupling_exponent > 0.0 && s.coupling_exponent <= 1.0)) {
-    fail("coupling_exponent", "value " + number_text(s.coupling_exponent) + " out of range: allowed (0, 1]");
-  }
+  require_positive(s.projectile_mass, "impact.projectile_mass");
+  require_positive(s.projectile_density, "impact.projectile_density");
+  require_positive(s.impact_speed, "impact.impact_speed");
+  require_positive(s.particle_spacing, "impact.particle_spacing");
+  require_in_range(s.impact_angle, "impact.impact_angle (degrees)", 0.0, 90.0, false, true);
+  require_in_range(s.coupling_exponent, "impact.coupling_exponent", 0.0, 1.0, true);
   validate_grading(s);
   ImpactSummary out;
   const double pi = std::numbers::pi;
@@ -448,10 +439,10 @@ ImpactScenario make_impact(const ImpactSetup& s, double eta, double alpha,
                      number_text(gravity[0]) + ", " + number_text(gravity[1]) + ", " +
                      number_text(gravity[2]) + "]");
   }
-  require_positive(s.domain_radius, "domain_radius");
-  require_positive(s.particle_spacing, "particle_spacing");
+  require_positive(s.domain_radius, "impact.domain_radius");
+  require_positive(s.particle_spacing, "impact.particle_spacing");
   validate_grading(s);
-  require_positive(s.low_sound_speed_modulus, "A_low");
+  require_positive(s.low_sound_speed_modulus, "impact.A_low");
   if (!(s.escape_speed >= 0.0) || !std::isfinite(s.escape_speed)) {
     fail("escape_speed",
          "value " + number_text(s.escape_speed) + " out of range: must be >= 0 (0: not used)");
@@ -460,10 +451,7 @@ ImpactScenario make_impact(const ImpactSetup& s, double eta, double alpha,
     fail("t_transition",
          "value " + number_text(s.transition_time) + " out of range: must be >= 0 (0: 10 R_dom / c)");
   }
-  if (!(s.fixed_shell_thickness >= 0.0) || !std::isfinite(s.fixed_shell_thickness)) {
-    fail("fixed_shell_thickness",
-         "value " + number_text(s.fixed_shell_thickness) + " out of range: must be >= 0");
-  }
+  require_non_negative(s.fixed_shell_thickness, "impact.fixed_shell_thickness");
   const double g = -gravity[2];
   const double dx = s.particle_spacing;
   const double R = s.domain_radius;

@@ -1,263 +1,173 @@
 #include "craterkit/sph/io/material_file.hpp"
 
-#include <toml++/toml.h>
-#include <algorithm>
 #include <cmath>
-#include <functional>
+#include <limits>
 #include <numbers>
 #include <optional>
-#include <set>
-#include <sstream>
+#include <string>
 #include <string_view>
 
 #include "craterkit/common/data_catalogue.hpp"
-#include "craterkit/common/data_path.hpp"
-#include "craterkit/common/input_error.hpp"
+#include "craterkit/common/format_number.hpp"
+#include "craterkit/common/toml_table.hpp"
 
 namespace craterkit::sph {
 namespace {
 
-// Reads one table, remembering which keys were used so that the rest can be reported as unknown.
-class TableReader {
- public:
-  TableReader(const toml::table& table, std::string file, std::string prefix)
-      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)) {}
+constexpr double inf = std::numeric_limits<double>::infinity();
 
-  [[nodiscard]] std::string key_name(std::string_view key) const { return prefix_ + std::string(key); }
-
-  [[noreturn]] void fail(std::string_view key, const std::string& message) const {
-    throw InputError(file_ + ": key '" + key_name(key) + "' " + message);
+// A number that must exceed (or, with or_equal, reach) another key's value: read as any finite number,
+// then checked against the other key, so that the message names that key.
+double read_above(TomlTable& t, std::string_view k, std::string_view other, double other_value,
+                  bool or_equal = false) {
+  const double v = t.required_number(k, -inf, inf);
+  if (or_equal ? !(v >= other_value) : !(v > other_value)) {
+    t.out_of_range(
+        k, v, std::string(or_equal ? ">= " : "> ") + std::string(other) + " = " + format_number(other_value));
   }
+  return v;
+}
 
-  const toml::node* node(std::string_view key) {
-    used_.insert(std::string(key));
-    return table_.get(key);
-  }
-
-  std::optional<std::string> optional_string(std::string_view key) {
-    const toml::node* n = node(key);
-    if (n == nullptr) return std::nullopt;
-    if (!n->is_string()) fail(key, "must be a string");
-    return n->value<std::string>();
-  }
-
-  std::string required_string(std::string_view key) {
-    auto s = optional_string(key);
-    if (!s) fail(key, "is missing");
-    return *s;
-  }
-
-  // A number (integer or floating point) that satisfies `allowed` (described in words for the error).
-  std::optional<double> optional_number(std::string_view key, const std::function<bool(double)>& allowed,
-                                        std::string_view allowed_text) {
-    const toml::node* n = node(key);
-    if (n == nullptr) return std::nullopt;
-    if (!n->is_number()) fail(key, "must be a number");
-    const double v = *n->value<double>();
-    if (!std::isfinite(v) || !allowed(v)) {
-      std::ostringstream text;
-      text.precision(17);
-      text << "= " << v << " is out of range: must be " << allowed_text;
-      fail(key, text.str());
-    }
-    return v;
-  }
-
-  double required_number(std::string_view key, const std::function<bool(double)>& allowed,
-                         std::string_view allowed_text) {
-    auto v = optional_number(key, allowed, allowed_text);
-    if (!v) fail(key, "is missing");
-    return *v;
-  }
-
-  const toml::table* optional_table(std::string_view key) {
-    const toml::node* n = node(key);
-    if (n == nullptr) return nullptr;
-    if (!n->is_table()) fail(key, "must be a table [" + key_name(key) + "]");
-    return n->as_table();
-  }
-
-  const toml::table& required_table(std::string_view key) {
-    const toml::node* n = node(key);
-    if (n == nullptr) fail(key, "is missing (a table [" + key_name(key) + "])");
-    if (!n->is_table()) fail(key, "must be a table [" + key_name(key) + "]");
-    return *n->as_table();
-  }
-
-  void reject_unknown_keys(std::string_view allowed_text) const {
-    for (const auto& [key, value] : table_) {
-      if (!used_.contains(std::string(key.str()))) {
-        throw InputError(file_ + ": unknown key '" + key_name(key.str()) +
-                         "' (allowed: " + std::string(allowed_text) + ")");
-      }
-    }
-  }
-
- private:
-  const toml::table& table_;
-  std::string file_;
-  std::string prefix_;
-  std::set<std::string> used_;
-};
-
-const auto positive = [](double v) { return v > 0.0; };
-const auto non_negative = [](double v) { return v >= 0.0; };
-const auto any_finite = [](double) { return true; };
-
-Tillotson read_tillotson(TableReader& eos) {
+Tillotson read_tillotson(TomlTable& eos) {
   Tillotson m{};
-  m.reference_density = eos.required_number("reference_density", positive, "> 0 (kg/m^3)");
-  m.A = eos.required_number("A", positive, "> 0 (Pa)");
-  m.B = eos.required_number("B", any_finite, "finite (Pa)");
-  m.E0 = eos.required_number("E0", positive, "> 0 (J/kg)");
-  m.E_iv = eos.required_number("E_iv", non_negative, ">= 0 (J/kg)");
-  m.E_cv = eos.required_number(
-      "E_cv", [&](double v) { return v > m.E_iv; }, "> E_iv (J/kg)");
-  m.a = eos.required_number("a", non_negative, ">= 0");
-  m.b = eos.required_number("b", non_negative, ">= 0");
-  m.alpha = eos.required_number("alpha", non_negative, ">= 0");
-  m.beta = eos.required_number("beta", non_negative, ">= 0");
+  m.reference_density = eos.required_number("reference_density", 0.0, inf, true);
+  m.A = eos.required_number("A", 0.0, inf, true);
+  m.B = eos.required_number("B", -inf, inf);
+  m.E0 = eos.required_number("E0", 0.0, inf, true);
+  m.E_iv = eos.required_number("E_iv", 0.0, inf);
+  m.E_cv = read_above(eos, "E_cv", "E_iv", m.E_iv);
+  m.a = eos.required_number("a", 0.0, inf);
+  m.b = eos.required_number("b", 0.0, inf);
+  m.alpha = eos.required_number("alpha", 0.0, inf);
+  m.beta = eos.required_number("beta", 0.0, inf);
   m.min_sound_speed_fraction =
-      eos.optional_number(
-             "min_sound_speed_fraction", [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]")
-          .value_or(Tillotson{}.min_sound_speed_fraction);
-  eos.reject_unknown_keys(
-      "model, reference_density, A, B, E0, E_iv, E_cv, a, b, alpha, beta, min_sound_speed_fraction");
+      eos.number("min_sound_speed_fraction", Tillotson{}.min_sound_speed_fraction, 0.0, 1.0, true);
+  eos.finish();
   return m;
 }
 
-LowSoundSpeed read_low_sound_speed(TableReader& eos) {
+LowSoundSpeed read_low_sound_speed(TomlTable& eos) {
   LowSoundSpeed law{};
-  law.reference_density = eos.required_number("reference_density", positive, "> 0 (kg/m^3)");
-  law.A = eos.required_number("A", positive, "> 0 (Pa)");
-  eos.reject_unknown_keys("model, reference_density, A");
+  law.reference_density = eos.required_number("reference_density", 0.0, inf, true);
+  law.A = eos.required_number("A", 0.0, inf, true);
+  eos.finish();
   return law;
 }
 
-IdealGas read_ideal_gas(TableReader& eos) {
-  IdealGas gas{eos.required_number(
-      "gamma", [](double v) { return v > 1.0; }, "> 1")};
-  eos.reject_unknown_keys("model, gamma");
+IdealGas read_ideal_gas(TomlTable& eos) {
+  IdealGas gas{eos.required_number("gamma", 1.0, inf, true)};
+  eos.finish();
   return gas;
 }
 
-// [strength]: model = "lundborg" (cohesion, friction_coefficient or repose_angle_degrees, limiting_strength)
-// or "von_mises" (yield_strength).
-StrengthModel read_strength(TableReader& strength) {
-  const std::string model = strength.required_string("model");
-  if (model == "lundborg") {
-    LundborgStrength law{};
-    law.cohesion = strength.required_number("cohesion", non_negative, ">= 0 (Pa)");
-    const auto friction = strength.optional_number("friction_coefficient", non_negative, ">= 0");
-    const auto repose = strength.optional_number(
-        "repose_angle_degrees", [](double v) { return v > 0.0 && v < 90.0; }, "in (0, 90) degrees");
-    if (friction && repose) {
-      strength.fail("repose_angle_degrees",
-                    "and 'strength.friction_coefficient' are both given: give exactly one (f = 2 sqrt(2) "
-                    "sin(theta) / (3 - sin(theta)))");
-    }
-    if (!friction && !repose) {
-      strength.fail("friction_coefficient", "is missing (give friction_coefficient or repose_angle_degrees)");
-    }
-    law.friction_coefficient =
-        friction ? *friction : friction_from_repose_angle(*repose * std::numbers::pi / 180.0);
-    law.limiting_strength =
-        strength
-            .optional_number(
-                "limiting_strength", [&](double v) { return v > law.cohesion; }, "> cohesion (Pa)")
-            .value_or(LundborgStrength{}.limiting_strength);
-    if (!(law.limiting_strength > law.cohesion)) {  // the default 3.5 GPa against a larger cohesion
-      strength.fail("cohesion", "must be below limiting_strength (Pa)");
-    }
-    strength.reject_unknown_keys(
-        "model, cohesion, friction_coefficient, repose_angle_degrees, limiting_strength");
-    return law;
+// [strength] model = "lundborg": cohesion, friction_coefficient or repose_angle_degrees (exactly one),
+// limiting_strength above the cohesion.
+LundborgStrength read_lundborg(TomlTable& strength) {
+  LundborgStrength law{};
+  law.cohesion = strength.required_number("cohesion", 0.0, inf);
+  const auto friction = strength.optional_number("friction_coefficient", 0.0, inf);
+  const auto repose = strength.optional_number("repose_angle_degrees", 0.0, 90.0, true, true);
+  if (friction && repose) {
+    strength.fail("repose_angle_degrees", "and " + strength.key("friction_coefficient") +
+                                              " are both given: give exactly one (f = 2 sqrt(2) sin(theta) / "
+                                              "(3 - sin(theta)))");
   }
-  if (model == "von_mises") {
-    VonMisesStrength law{strength.required_number("yield_strength", positive, "> 0 (Pa)")};
-    strength.reject_unknown_keys("model, yield_strength");
-    return law;
+  if (!friction && !repose) {
+    strength.fail("friction_coefficient", "missing: give friction_coefficient or repose_angle_degrees");
   }
-  strength.fail("model", "= \"" + model + "\" is not a known strength model (allowed: lundborg, von_mises)");
+  law.friction_coefficient =
+      friction ? *friction : friction_from_repose_angle(*repose * std::numbers::pi / 180.0);
+  if (strength.contains("limiting_strength")) {
+    law.limiting_strength = read_above(strength, "limiting_strength", "cohesion", law.cohesion);
+  } else {
+    strength.accept("limiting_strength");
+  }
+  if (!(law.limiting_strength > law.cohesion)) {  // the default 3.5 GPa against a larger cohesion
+    strength.out_of_range("cohesion", law.cohesion,
+                          "< limiting_strength = " + format_number(law.limiting_strength) + " (its default)");
+  }
+  strength.finish();
+  return law;
 }
 
-// [porosity]: model = "p_alpha" with the crush curve of physics.md section 2 and the porous sound speed.
-PAlphaPorosity read_porosity(TableReader& porosity, const SolidReference& matrix) {
-  const std::string model = porosity.required_string("model");
-  if (model != "p_alpha") {
-    porosity.fail("model", "= \"" + model + "\" is not a known porosity model (allowed: p_alpha)");
-  }
+// [strength]: model = "lundborg" or "von_mises" (yield_strength).
+StrengthModel read_strength(TomlTable& strength) {
+  const std::string model = strength.required_text(
+      "model", "the strength model (\"lundborg\" or \"von_mises\")", {"lundborg", "von_mises"});
+  if (model == "lundborg") return read_lundborg(strength);
+  VonMisesStrength law{strength.required_number("yield_strength", 0.0, inf, true)};
+  strength.finish();
+  return law;
+}
+
+// [porosity]: model = "p_alpha" with the crush curve of physics.md section 2 and the porous sound speed,
+// which must not exceed the matrix sound speed.
+PAlphaPorosity read_porosity(TomlTable& porosity, const SolidReference& matrix) {
+  (void)porosity.required_text("model", "the porosity model (\"p_alpha\")", {"p_alpha"});
   PAlphaPorosity out{};
   PAlphaParameters& p = out.crush_curve;
-  p.transition_distention = porosity.required_number(
-      "transition_distention", [](double v) { return v >= 1.0; }, ">= 1 (alpha_t)");
-  p.initial_distention = porosity.required_number(
-      "initial_distention", [&](double v) { return v >= p.transition_distention; },
-      ">= transition_distention (alpha0 >= alpha_t >= 1)");
-  p.elastic_pressure = porosity.required_number("elastic_pressure", non_negative, ">= 0 (P_e, Pa)");
-  p.transition_pressure = porosity.required_number(
-      "transition_pressure", [&](double v) { return v > p.elastic_pressure; }, "> elastic_pressure (Pa)");
-  p.solid_pressure = porosity.required_number(
-      "solid_pressure", [&](double v) { return v > p.transition_pressure; }, "> transition_pressure (Pa)");
-  p.exponent_1 = porosity.required_number("exponent_1", positive, "> 0 (n1)");
-  p.exponent_2 = porosity.required_number("exponent_2", positive, "> 0 (n2)");
+  p.transition_distention = porosity.required_number("transition_distention", 1.0, inf);
+  p.initial_distention =
+      read_above(porosity, "initial_distention", "transition_distention", p.transition_distention, true);
+  p.elastic_pressure = porosity.required_number("elastic_pressure", 0.0, inf);
+  p.transition_pressure = read_above(porosity, "transition_pressure", "elastic_pressure", p.elastic_pressure);
+  p.solid_pressure = read_above(porosity, "solid_pressure", "transition_pressure", p.transition_pressure);
+  p.exponent_1 = porosity.required_number("exponent_1", 0.0, inf, true);
+  p.exponent_2 = porosity.required_number("exponent_2", 0.0, inf, true);
   out.matrix_sound_speed = std::sqrt(matrix.bulk_modulus / matrix.density);
-  std::ostringstream bound;
-  bound.precision(6);
-  bound << "> 0 and <= the matrix sound speed sqrt(eos.A / eos.reference_density) = "
-        << out.matrix_sound_speed << " (m/s)";
-  out.porous_sound_speed = porosity.required_number(
-      "porous_sound_speed", [&](double v) { return v > 0.0 && v <= out.matrix_sound_speed; }, bound.str());
-  porosity.reject_unknown_keys(
-      "model, initial_distention, transition_distention, elastic_pressure, transition_pressure, "
-      "solid_pressure, exponent_1, exponent_2, porous_sound_speed");
+  out.porous_sound_speed = porosity.required_number("porous_sound_speed", -inf, inf);
+  if (!(out.porous_sound_speed > 0.0 && out.porous_sound_speed <= out.matrix_sound_speed)) {
+    porosity.out_of_range("porous_sound_speed", out.porous_sound_speed,
+                          "(0, " + format_number(out.matrix_sound_speed) +
+                              "], at most the matrix sound speed sqrt(eos.A / eos.reference_density) (m/s)");
+  }
+  porosity.finish();
   return out;
 }
 
-Material parse_material(const toml::table& root, const std::string& name, const std::string& file) {
-  TableReader top(root, file, "");
+// [eos] and the shear modulus that goes with it: required for a solid, 0 (or absent) for an ideal gas.
+void read_eos(TomlTable& top, Material& material) {
+  TomlTable eos = top.required_table("eos");
+  const std::string model =
+      eos.required_text("model", "the equation of state", {"tillotson", "low_sound_speed", "ideal_gas"});
+  if (model == "ideal_gas") {
+    material.eos = read_ideal_gas(eos);
+    material.shear_modulus = top.number("shear_modulus", 0.0, -inf, inf);
+    if (material.shear_modulus != 0.0)
+      top.out_of_range("shear_modulus", material.shear_modulus, "0 for an ideal gas");
+    return;
+  }
+  if (model == "tillotson") {
+    material.eos = read_tillotson(eos);
+  } else {
+    material.eos = read_low_sound_speed(eos);
+  }
+  material.shear_modulus = top.required_number("shear_modulus", 0.0, inf);
+}
+
+Material parse_material(TomlTable& top, const std::string& name) {
   Material material{};
   material.name = name;
-  material.citation = top.required_string("citation");
-  material.description = top.optional_string("description").value_or("");
-
-  TableReader eos(top.required_table("eos"), file, "eos.");
-  const std::string model = eos.required_string("model");
-  if (model == "tillotson" || model == "low_sound_speed") {
-    if (model == "tillotson") {
-      material.eos = read_tillotson(eos);
-    } else {
-      material.eos = read_low_sound_speed(eos);
-    }
-    material.shear_modulus = top.required_number("shear_modulus", non_negative, ">= 0 (Pa)");
-  } else if (model == "ideal_gas") {
-    material.eos = read_ideal_gas(eos);
-    material.shear_modulus = top.optional_number(
-                                    "shear_modulus", [](double v) { return v == 0.0; }, "0 for an ideal gas")
-                                 .value_or(0.0);
-  } else {
-    eos.fail("model",
-             "= \"" + model +
-                 "\" is not a known equation of state (allowed: tillotson, low_sound_speed, ideal_gas)");
-  }
-
+  material.citation = top.required_text("citation", "the source of the values");
+  material.description = top.text("description", "");
+  read_eos(top, material);
   const auto solid = solid_reference(material.eos);
-  if (const toml::table* table = top.optional_table("strength")) {
-    if (!solid) top.fail("strength", "is given for an ideal gas: strength needs a solid equation of state");
+  TomlTable strength = top.table("strength");
+  if (top.contains("strength")) {
+    if (!solid) top.fail("strength", "given for an ideal gas: strength needs a solid equation of state");
     if (!(material.shear_modulus > 0.0)) {
-      top.fail("shear_modulus",
-               "= 0 with a [strength] table: a material with strength needs shear_modulus > 0");
+      top.out_of_range("shear_modulus", material.shear_modulus,
+                       "> 0 with a [strength] table (a material with strength needs a shear modulus)");
     }
-    TableReader strength(*table, file, "strength.");
     material.strength = read_strength(strength);
   }
-  if (const toml::table* table = top.optional_table("porosity")) {
+  TomlTable porosity = top.table("porosity");
+  if (top.contains("porosity")) {
     if (!solid)
-      top.fail("porosity", "is given for an ideal gas: porosity needs a solid matrix equation of state");
-    TableReader porosity(*table, file, "porosity.");
+      top.fail("porosity", "given for an ideal gas: porosity needs a solid matrix equation of state");
     material.porosity = read_porosity(porosity, *solid);
   }
-  top.reject_unknown_keys("description, citation, shear_modulus, [eos], [strength], [porosity]");
+  top.finish();
   return material;
 }
 
@@ -269,7 +179,8 @@ std::vector<std::string> material_names() {
 
 Material load_material(const std::string& name_or_path) {
   const auto file = resolve_data_set(name_or_path, "materials", "material");
-  return parse_material(parse_toml_file(file), file.stem().string(), file.string());
+  TomlTable top = TomlTable::parse_file(file);
+  return parse_material(top, file.stem().string());
 }
 
 }  // namespace craterkit::sph

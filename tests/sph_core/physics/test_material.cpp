@@ -220,15 +220,15 @@ TEST_F(BadMaterialFile, ValidFileLoadsByPathWithDefaults) {
 
 TEST_F(BadMaterialFile, UnknownKeysAreNamed) {
   expect_mentions(error_of(valid_tillotson() + "gamma = 1.4\n"), {"rock.toml", "eos.gamma", "unknown"});
-  expect_mentions(error_of("colour = \"grey\"\n" + valid_tillotson()), {"'colour'", "unknown"});
+  expect_mentions(error_of("colour = \"grey\"\n" + valid_tillotson()), {"unknown key colour"});
   expect_mentions(
       error_of(valid_tillotson() + "[strength]\nmodel = \"von_mises\"\nyield_strength = 1e8\nY = 2\n"),
-      {"'strength.Y'", "unknown"});
-  expect_mentions(error_of(valid_tillotson() + "[damage]\nweibull_k = 1\n"), {"'damage'", "unknown"});
+      {"unknown key strength.Y"});
+  expect_mentions(error_of(valid_tillotson() + "[damage]\nweibull_k = 1\n"), {"unknown key damage"});
 }
 
 TEST_F(BadMaterialFile, OutOfRangeValuesAreNamedWithTheValue) {
-  expect_mentions(error_of(replace(valid_tillotson(), "A = 26.7e9", "A = -5")), {"eos.A", "-5", "> 0"});
+  expect_mentions(error_of(replace(valid_tillotson(), "A = 26.7e9", "A = -5")), {"eos.A", "-5", "(0, inf)"});
   expect_mentions(error_of(replace(valid_tillotson(), "E_cv = 18.2e6", "E_cv = 1e6")),
                   {"eos.E_cv", "> E_iv"});
   expect_mentions(error_of(replace(valid_tillotson(), "shear_modulus = 1e9", "shear_modulus = -1")),
@@ -236,7 +236,7 @@ TEST_F(BadMaterialFile, OutOfRangeValuesAreNamedWithTheValue) {
   expect_mentions(error_of(valid_tillotson() + "min_sound_speed_fraction = 2\n"),
                   {"eos.min_sound_speed_fraction", "(0, 1]"});
   expect_mentions(error_of("citation = \"x\"\n[eos]\nmodel = \"ideal_gas\"\ngamma = 0.9\n"),
-                  {"eos.gamma", "> 1"});
+                  {"eos.gamma", "(1, inf)"});
   expect_mentions(
       error_of("citation = \"x\"\nshear_modulus = 3.0\n[eos]\nmodel = \"ideal_gas\"\ngamma = 1.4\n"),
       {"shear_modulus", "ideal gas"});
@@ -250,11 +250,11 @@ TEST_F(BadMaterialFile, MissingAndMistypedKeysAreNamed) {
   expect_mentions(error_of("citation = \"x\"\n"), {"eos", "missing"});
   expect_mentions(error_of(replace(valid_tillotson(), "B = 26.7e9", "B = \"big\"")), {"eos.B", "number"});
   expect_mentions(error_of(replace(valid_tillotson(), "model = \"tillotson\"", "model = \"aneos\"")),
-                  {"eos.model", "tillotson, low_sound_speed, ideal_gas"});
+                  {"eos.model", "\"tillotson\", \"low_sound_speed\", \"ideal_gas\""});
 }
 
 TEST_F(BadMaterialFile, SyntaxErrorsAndMissingFiles) {
-  expect_mentions(error_of("citation = \n"), {"rock.toml:1", "invalid TOML"});
+  expect_mentions(error_of("citation = \n"), {"rock.toml:1", "TOML syntax error"});
   try {
     load_material((directory_ / "absent.toml").string());
     FAIL() << "no error for a missing file";
@@ -316,7 +316,7 @@ TEST_F(BadMaterialFile, MalformedStrengthIsNamed) {
   expect_mentions(error_of(base + lundborg("repose_angle_degrees = 95\n")),
                   {"strength.repose_angle_degrees", "95", "(0, 90)"});
   expect_mentions(error_of(base + lundborg("friction_coefficient = -0.1\n")),
-                  {"strength.friction_coefficient", "-0.1", ">= 0"});
+                  {"strength.friction_coefficient", "-0.1", "[0, inf)"});
   expect_mentions(error_of(base + lundborg("friction_coefficient = 0.5\nlimiting_strength = 1e4\n")),
                   {"strength.limiting_strength", "10000", "> cohesion"});
   expect_mentions(
@@ -324,18 +324,18 @@ TEST_F(BadMaterialFile, MalformedStrengthIsNamed) {
       {"strength.cohesion", "limiting_strength"});
   expect_mentions(
       error_of(base + "[strength]\nmodel = \"lundborg\"\ncohesion = -1\nfriction_coefficient = 1\n"),
-      {"strength.cohesion", "-1", ">= 0"});
+      {"strength.cohesion", "-1", "[0, inf)"});
   expect_mentions(error_of(base + "[strength]\nmodel = \"lundborg\"\nfriction_coefficient = 1\n"),
                   {"strength.cohesion", "missing"});
   expect_mentions(error_of(base + lundborg("friction_coefficient = 0.5\nangle = 3\n")),
                   {"strength.angle", "unknown"});
   expect_mentions(error_of(base + "[strength]\nmodel = \"mohr_coulomb\"\n"),
-                  {"strength.model", "mohr_coulomb", "lundborg, von_mises"});
+                  {"strength.model", "mohr_coulomb", "\"lundborg\", \"von_mises\""});
   expect_mentions(error_of(base + "[strength]\ncohesion = 1\n"), {"strength.model", "missing"});
   expect_mentions(error_of(base + "[strength]\nmodel = \"von_mises\"\n"),
                   {"strength.yield_strength", "missing"});
   expect_mentions(error_of(base + "[strength]\nmodel = \"von_mises\"\nyield_strength = 0\n"),
-                  {"strength.yield_strength", "> 0"});
+                  {"strength.yield_strength", "(0, inf)"});
   expect_mentions(error_of(base + "[strength]\nmodel = \"von_mises\"\nyield_strength = 1e8\ncohesion = 1\n"),
                   {"strength.cohesion", "unknown"});
   expect_mentions(error_of(replace(base, "shear_modulus = 1e9", "shear_modulus = 0") +
@@ -343,8 +343,8 @@ TEST_F(BadMaterialFile, MalformedStrengthIsNamed) {
                   {"shear_modulus", "> 0"});
   expect_mentions(error_of("citation = \"x\"\n[eos]\nmodel = \"ideal_gas\"\ngamma = 1.4\n[strength]\n"
                            "model = \"von_mises\"\nyield_strength = 1e8\n"),
-                  {"'strength'", "ideal gas"});
-  expect_mentions(error_of("strength = 3\n" + base), {"'strength'", "table"});
+                  {"rock.toml: strength: ", "ideal gas"});
+  expect_mentions(error_of("strength = 3\n" + base), {"rock.toml: strength: ", "table"});
 }
 
 TEST_F(BadMaterialFile, MalformedPorosityIsNamed) {
@@ -356,26 +356,26 @@ TEST_F(BadMaterialFile, MalformedPorosityIsNamed) {
   expect_mentions(with("initial_distention = 2", "initial_distention = 1.1"),
                   {"porosity.initial_distention", "1.1", ">= transition_distention"});
   expect_mentions(with("transition_distention = 1.25", "transition_distention = 0.9"),
-                  {"porosity.transition_distention", "0.9", ">= 1"});
+                  {"porosity.transition_distention", "0.9", "[1, inf)"});
   expect_mentions(with("elastic_pressure = 1e6", "elastic_pressure = -1"),
-                  {"porosity.elastic_pressure", ">= 0"});
+                  {"porosity.elastic_pressure", "[0, inf)"});
   expect_mentions(with("transition_pressure = 68e6", "transition_pressure = 1e6"),
                   {"porosity.transition_pressure", "> elastic_pressure"});
   expect_mentions(with("solid_pressure = 213e6", "solid_pressure = 68e6"),
                   {"porosity.solid_pressure", "> transition_pressure"});
-  expect_mentions(with("exponent_1 = 12", "exponent_1 = 0"), {"porosity.exponent_1", "> 0"});
-  expect_mentions(with("exponent_2 = 3", "exponent_2 = -3"), {"porosity.exponent_2", "-3", "> 0"});
+  expect_mentions(with("exponent_1 = 12", "exponent_1 = 0"), {"porosity.exponent_1", "(0, inf)"});
+  expect_mentions(with("exponent_2 = 3", "exponent_2 = -3"), {"porosity.exponent_2", "-3", "(0, inf)"});
   expect_mentions(with("porous_sound_speed = 1500", "porous_sound_speed = 4000"),
                   {"porosity.porous_sound_speed", "4000", "3144.66"});
   expect_mentions(with("porous_sound_speed = 1500", "porous_sound_speed = 0"),
-                  {"porosity.porous_sound_speed", "> 0"});
+                  {"porosity.porous_sound_speed", "(0, 3144.66"});
   expect_mentions(with("porous_sound_speed = 1500\n", ""), {"porosity.porous_sound_speed", "missing"});
   expect_mentions(with("exponent_2 = 3\n", ""), {"porosity.exponent_2", "missing"});
   expect_mentions(with("model = \"p_alpha\"", "model = \"epsilon_alpha\""),
                   {"porosity.model", "epsilon_alpha", "p_alpha"});
   expect_mentions(error_of(base + nominal + "crush_exponent = 1\n"), {"porosity.crush_exponent", "unknown"});
   expect_mentions(error_of("citation = \"x\"\n[eos]\nmodel = \"ideal_gas\"\ngamma = 1.4\n" + nominal),
-                  {"'porosity'", "ideal gas"});
+                  {"rock.toml: porosity: ", "ideal gas"});
 }
 
 TEST_F(BadMaterialFile, LowSoundSpeedLawLoads) {
@@ -388,7 +388,7 @@ TEST_F(BadMaterialFile, LowSoundSpeedLawLoads) {
   EXPECT_EQ(law.A, 2.7e4);
   expect_mentions(error_of("citation = \"x\"\nshear_modulus = 2e4\n[eos]\nmodel = \"low_sound_speed\"\n"
                            "reference_density = 2600\nA = 0\n"),
-                  {"eos.A", "> 0"});
+                  {"eos.A", "(0, inf)"});
   expect_mentions(error_of("citation = \"x\"\nshear_modulus = 2e4\n[eos]\nmodel = \"low_sound_speed\"\n"
                            "reference_density = 2600\nA = 1\nB = 1\n"),
                   {"eos.B", "unknown"});

@@ -1,15 +1,12 @@
 #pragma once
 // Shipped data sets (materials, scaling constants, bodies, populations) are TOML files under
 // data/<folder>/, addressed on the command line and in configurations either by name ("basalt") or by
-// the path of any file with the same schema ("my/basalt.toml"). One resolver and one parser for all
-// of them, so that every loader reports a missing name or a malformed file the same way.
+// the path of any file with the same schema ("my/basalt.toml"). One resolver for all of them, so that
+// every loader reports a missing name the same way; the files are read with TomlTable (toml_table.hpp).
 #include <algorithm>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
-
-#include <toml++/toml.h>
 
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
@@ -41,18 +38,6 @@ inline std::filesystem::path resolve_data_set(const std::string& name_or_path, c
   for (const auto& n : data_set_names(folder)) names += (names.empty() ? "" : ", ") + n;
   throw InputError(what + " '" + name_or_path + "' is not known; available: " + names +
                    " (or give the path of a " + folder + " .toml file)");
-}
-
-// Parses a TOML file; a missing file or a syntax error is an InputError "file:line:column: what".
-inline toml::table parse_toml_file(const std::filesystem::path& file) {
-  try {
-    return toml::parse_file(file.string());
-  } catch (const toml::parse_error& e) {
-    std::ostringstream text;
-    text << file.string() << ":" << e.source().begin.line << ":" << e.source().begin.column
-         << ": invalid TOML: " << e.description();
-    throw InputError(text.str());
-  }
 }
 
 }  // namespace craterkit

@@ -32,15 +32,21 @@ class TomlTable {
 
   // Whether the key is present (does not count as read).
   [[nodiscard]] bool contains(std::string_view k) const;
-  // The keys present, in document order.
+  // The keys present, sorted by name.
   [[nodiscard]] std::vector<std::string> keys() const;
   // Marks a key as read without reading it (its value is checked elsewhere, or deliberately ignored).
   void accept(std::string_view k) { used_.insert(std::string(k)); }
 
-  // A finite number in [lo, hi] (lower bound open when lo_open); integers are accepted.
-  double number(std::string_view k, double fallback, double lo, double hi, bool lo_open = false);
-  std::optional<double> optional_number(std::string_view k, double lo, double hi, bool lo_open = false);
-  double required_number(std::string_view k, double lo, double hi, bool lo_open = false);
+  // A finite number in [lo, hi] (lower bound open when lo_open, upper when hi_open); integers are accepted.
+  double number(std::string_view k, double fallback, double lo, double hi, bool lo_open = false,
+                bool hi_open = false);
+  std::optional<double> optional_number(std::string_view k, double lo, double hi, bool lo_open = false,
+                                        bool hi_open = false);
+  double required_number(std::string_view k, double lo, double hi, bool lo_open = false,
+                         bool hi_open = false);
+  // Reports a number that a getter accepted but a check among several keys rejects, in the getters'
+  // words: "value <v> out of range: allowed <allowed>" (allowed: "> E_iv = 4720000").
+  [[noreturn]] void out_of_range(std::string_view k, double value, const std::string& allowed) const;
   std::int64_t integer(std::string_view k, std::int64_t fallback, std::int64_t lo, std::int64_t hi);
   bool boolean(std::string_view k, bool fallback);
   // A non-empty string, one of `allowed` when that is given.
@@ -54,19 +60,26 @@ class TomlTable {
   std::optional<std::vector<double>> numbers(std::string_view k,
                                              std::optional<std::size_t> count = std::nullopt,
                                              bool allow_infinite = false);
-  std::vector<double> required_numbers(std::string_view k, std::size_t count, bool allow_infinite = false);
+  std::vector<double> required_numbers(std::string_view k, std::optional<std::size_t> count = std::nullopt,
+                                       bool allow_infinite = false);
   // An array of non-empty strings. Absent gives nullopt.
   std::optional<std::vector<std::string>> texts(std::string_view k);
 
   // The sub-table under key k; an absent key gives an empty table (whose getters return their fallbacks);
   // a value that is not a table is an error.
   TomlTable table(std::string_view k);
+  // The sub-table under key k; an absent key is an error.
+  TomlTable required_table(std::string_view k);
   [[nodiscard]] bool is_table(std::string_view k) const;
   // An array of tables ([[k]]); absent gives an empty vector.
   std::vector<TomlTable> tables(std::string_view k);
 
   // Rejects every key that no getter (or accept()) asked for.
   void finish() const;
+  // Rejects now every key not in `allowed`, in finish()'s words. A reader that calls this before its
+  // getters reports a misspelt key as unknown (listing the allowed ones) rather than the key it was meant
+  // to be as missing. It counts nothing as read: finish() still rejects what no getter asked for.
+  void reject_unknown(const std::vector<std::string>& allowed) const;
 
  private:
   struct Document;
