@@ -259,7 +259,8 @@ void reject_keys_outside(const TomlTable& table, const toml::table* keys,
     if (allowed.count(name) == 0) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(table.source() + ": unknown key " + table.key(name) + " (allowed here: " + list + ")");
+      throw InputError(table.source() + ": unknown key " + table.key(name) +
+                       (list.empty() ? std::string(" (no keys are allowed here)") : " (allowed here: " + list + ")"));
     }
   }
 }

@@ -19,6 +19,7 @@
 
 #include "crater_columns.hpp"
 #include "craterkit/common/atomic_file.hpp"
+#include "craterkit/common/checks.hpp"
 #include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 
@@ -34,17 +35,6 @@ using crater_detail::column_surface;
 using crater_detail::ColumnGrid;
 using crater_detail::nan;
 
-void require_positive(double value, const char* name) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string(name) + " = " + std::to_string(value) + ": must be a finite number > 0");
-  }
-}
-void require_non_negative(double value, const char* name) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    throw InputError(std::string(name) + " = " + std::to_string(value) +
-                     ": must be a finite number >= 0 (0 selects the default)");
-  }
-}
 
 // The steps that follow the local spacing dx(r) (graded_spacing.hpp; the particle spacing everywhere on
 // a uniform target): a defaulted step is taken at each sample radius from dx(r), so that a graded target
@@ -515,6 +505,7 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
 void validate(const CraterMeasurementOptions& o) {
   require_positive(o.rho_initial, "rho_initial");
   require_positive(o.particle_spacing, "particle_spacing");
+  // 0 selects the default of each.
   require_non_negative(o.max_radius, "max_radius");
   require_non_negative(o.radial_step, "radial_step");
   require_non_negative(o.vertical_step, "vertical_step");
