@@ -2,12 +2,12 @@
 """Writes data/examples/radii_example.csv: a SYNTHETIC table of impacts and crater radii for the
 scaling fit (`craterkit fit`, `craterkit run`). It is not simulation output.
 
-The radii come from the Housen & Holsapple (2011) form of the point-source law (physics.md section 6)
+The radii come from the Housen & Holsapple (2011) form of the point-source law (docs/physics.md section 6)
 with the Jutzi et al. (2022) Ryugu constants H1 = 0.60, H2 = 0.25, mu = 0.44, nu = 0.4, evaluated here
 independently of the C++ code, times log-normal noise exp(0.05 N(0,1)) drawn with numpy's default_rng(seed 2022).
 Each row's crater_radius_sigma is 5 % of its noisy radius.
 
-Grid: impactor masses 0.05, 2, 100, 2000 kg (physics.md section 4) of density 2700 kg/m^3 (rock) or
+Grid: impactor masses 0.05, 2, 100, 2000 kg (docs/physics.md section 4) of density 2700 kg/m^3 (rock) or
 7800 kg/m^3 (steel; two densities make nu determinable), 2 km/s, into a Ryugu-like target
 (1300 kg/m^3, g = 1.4e-4 m/s^2) of cohesion 0.05, 0.5, 5 or 50 Pa.
 
@@ -25,7 +25,7 @@ NOISE = 0.05  # standard deviation of ln R
 
 
 def crater_radius(a, delta, u, rho, g, y):
-    """Apparent radius, HH2011 form exactly as written in physics.md section 6."""
+    """Apparent radius, HH2011 form exactly as written in docs/physics.md section 6."""
     m = 4.0 / 3.0 * math.pi * a**3 * delta
     pi2 = g * a / u**2
     pi3 = y / (rho * u**2)

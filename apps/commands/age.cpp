@@ -1,6 +1,6 @@
 // craterkit age: model (crater-retention) ages of a counted surface unit per cohesion, by the Poisson
 // likelihood of Michael et al. (2016), with the classical cumulative fit for comparison
-// (physics.md sec. 7; chronology/model_age.hpp). --plot draws the standard figure through
+// (docs/physics.md sec. 7; chronology/model_age.hpp). --plot draws the standard figure through
 // scripts/plot_age.py.
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,7 @@
-// craterkit measure: the crater of an SPH snapshot (physics.md section 5), printed, and with --out written as
-// crater.json and crater_profile.csv (formats in docs/crater_measurement.md). The snapshot of an impact run
-// is measured as the run measured it (its run record: impact/impact_run_record.hpp); flags override.
+// craterkit measure: the crater of an SPH snapshot (docs/physics.md section 5), printed, and with --out
+// written as crater.json and crater_profile.csv (formats in docs/crater_measurement.md). The snapshot of an
+// impact run is measured as the run measured it (its run record: impact/impact_run_record.hpp); flags
+// override.
 #include <cmath>
 #include <fstream>
 #include <iostream>

@@ -1,6 +1,6 @@
 #pragma once
 // Flags shared by `craterkit rates` and `craterkit age`: the target body, its collision environment and
-// the conventions that turn scaling-law radii into counted diameters (physics.md section 7), resolved
+// the conventions that turn scaling-law radii into counted diameters (docs/physics.md section 7), resolved
 // into the chronology library's production set-up. The scaling constants themselves come from
 // scaling_flags.hpp; --velocity there (one speed) and --speed-table here (a distribution) exclude each other.
 #include <optional>

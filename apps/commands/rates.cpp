@@ -1,5 +1,5 @@
 // craterkit rates: impactor radius and relative crater-formation rate for each crater diameter and
-// cohesion (physics.md sec. 7; chronology/relative_rates.hpp).
+// cohesion (docs/physics.md sec. 7; chronology/relative_rates.hpp).
 #include <cmath>
 #include <iostream>
 #include <memory>

@@ -33,7 +33,7 @@ struct RunOptions {
   bool json = false;
 };
 
-// The SCI experiment (physics.md sections 4 and 6): 2 kg, 2700 kg/m^3, 2 km/s, vertical, into Ryugu.
+// The SCI experiment (docs/physics.md sections 4 and 6): 2 kg, 2700 kg/m^3, 2 km/s, vertical, into Ryugu.
 constexpr double kSciMass = 2.0;                             // kg
 constexpr double kSciDensity = 2700.0;                       // kg/m^3
 constexpr double kSciVelocity = 2000.0;                      // m/s

@@ -1,5 +1,5 @@
 // craterkit scale: the point-source crater radius of one impact, or the impactor radius that makes a
-// given crater (physics.md section 6).
+// given crater (docs/physics.md section 6).
 #include <cmath>
 #include <iostream>
 #include <memory>

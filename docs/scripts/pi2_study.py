@@ -9,7 +9,7 @@ Each RUN_DIR is a run of `docs/scripts/impact_study.py` (it holds config.toml, s
 target material was changed, target.toml). From the configuration: the projectile mass m, density delta
 and speed U ([impact]), the gravity g ([run] gravity), the target's bulk density rho (its material's
 [eos] reference_density / [porosity] initial_distention; data/materials/ or $CRATERKIT_DATA_DIR/materials)
-and its cohesion; from summary.json the crater radius R and its uncertainty. Then (physics.md section 6)
+and its cohesion; from summary.json the crater radius R and its uncertainty. Then (docs/physics.md section 6)
 
   a = (3 m / (4 pi delta))^(1/3),  pi_2 = g a / U^2,  pi_R = R (rho/m)^(1/3),  pi_4 = rho/delta,
 

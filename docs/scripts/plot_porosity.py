@@ -14,7 +14,7 @@ import matplotlib.pyplot as plt
 
 directory, compaction_png, shock_png = sys.argv[1], sys.argv[2], sys.argv[3]
 
-# Nominal crush curve of physics.md section 2 (data/materials/basalt_matrix_ryugu.toml).
+# Nominal crush curve of docs/physics.md section 2 (data/materials/basalt_matrix_ryugu.toml).
 alpha0, alpha_t, p_e, p_t, p_s, n1, n2 = 2.0, 1.25, 1.0e6, 68.0e6, 213.0e6, 12.0, 3.0
 
 
@@ -31,7 +31,7 @@ def crush_curve(p):
 rows = list(csv.DictReader(open(f"{directory}/compaction.csv")))
 fig, ax = plt.subplots(figsize=(7, 4.5))
 p_line = np.linspace(0.0, 220e6, 2000)
-ax.plot(p_line * 1e-6, crush_curve(p_line), "k-", lw=1, label="crush curve alpha_c(P) (physics.md)")
+ax.plot(p_line * 1e-6, crush_curve(p_line), "k-", lw=1, label="crush curve alpha_c(P) (docs/physics.md)")
 for phase, style in (("loading", "o"), ("unloading", "v"), ("reloading", "^")):
     sel = [r for r in rows if r["phase"] == phase]
     p = np.array([float(r["pressure_Pa"]) for r in sel])

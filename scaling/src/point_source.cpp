@@ -1,4 +1,4 @@
-// Forward point-source law, pi groups, regimes and limits (physics.md section 6).
+// Forward point-source law, pi groups, regimes and limits (docs/physics.md section 6).
 #include <cmath>
 #include <numbers>
 #include <sstream>

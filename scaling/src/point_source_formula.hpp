@@ -1,5 +1,5 @@
 #pragma once
-// The point-source law of physics.md section 6 in log space, templated so that the Ceres fit can
+// The point-source law of docs/physics.md section 6 in log space, templated so that the Ceres fit can
 // differentiate it automatically (T = ceres::Jet) and the forward model uses the very same code
 // (T = double). Private to the scaling library.
 //

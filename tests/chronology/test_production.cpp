@@ -69,7 +69,7 @@ TEST(Production, SpeedDistributionIsTheWeightedMean) {
 }
 
 TEST(RelativeRates, HundredAgainstTenWithQMinus4GivesThousand) {
-  // physics.md sec. 7: D_crat/D_proj of 100 instead of 10 gives 10^3 more craters when q = -4.
+  // docs/physics.md sec. 7: D_crat/D_proj of 100 instead of 10 gives 10^3 more craters when q = -4.
   const auto s = setup_power_law(-4.0, ck::CrossSection::target_only);
   for (double D : {10.0, 36.0, 300.0}) {
     const auto rr = ck::relative_rate(s, constant_ratio(10.0), constant_ratio(100.0), D);

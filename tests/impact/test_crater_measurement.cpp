@@ -1,8 +1,8 @@
-// Crater measurement (physics.md section 5) on synthetic particle sets with known craters.
+// Crater measurement (docs/physics.md section 5) on synthetic particle sets with known craters.
 //
 // Every target is a simple cubic lattice of spacing dx (sites at (i + 1/2) dx horizontally, so the
 // impact point x = y = 0 lies between sites, and z = (k + 1/2) dx vertically: the top layer of a flat
-// surface lies half a spacing below z = 0, as in physics.md section 4), density rho, masses rho dx^3,
+// surface lies half a spacing below z = 0, as in docs/physics.md section 4), density rho, masses rho dx^3,
 // smoothing length h = 1.2 dx unless stated. A crater with surface z = f(x, y) is made either by
 // keeping the sites with z < f (each site stands for the cell dx^3 around it), or by shifting every
 // lattice column vertically so that its top site lies dx/2 below f (see Build).
@@ -134,7 +134,7 @@ Surface axisymmetric(const std::function<double(double)>& f) {
 
 // --- Flat undisturbed surface --------------------------------------------------------------------------
 
-// physics.md section 5: the unnormalised interpolation of a flat free surface reads rho_initial/2 at
+// docs/physics.md section 5: the unnormalised interpolation of a flat free surface reads rho_initial/2 at
 // z = 0, so the rho_crit iso-surface lies within 0.1 spacing of z = 0. Checked at points spread over a
 // lattice cell (on sites, between them, on cell corners), for both kernels and h = 1.2 and 1.3 dx.
 TEST(CraterMeasurement, FlatSurfaceIsoSurfaceWithinATenthOfASpacingOfTheSurface) {
@@ -274,7 +274,7 @@ TEST(CraterMeasurement, BowlsCutFromTheLatticeMatchWithinTheStaircase) {
 
 // A crater without a rim (spherical cap cut from a flat surface): outside the wall the plane density
 // approaches rho_crit from below over the kernel support (the missing cap reduces it out to r = R + 2h)
-// and then hovers at rho_crit up to lattice noise, so the crossing that physics.md section 5 defines is
+// and then hovers at rho_crit up to lattice noise, so the crossing that docs/physics.md section 5 defines is
 // ill-conditioned there. The measurement must say so, and the edge stays between the staircase bound
 // R - dx/2 and the kernel support R + 2h (measured: R + 0.56 to R + 0.81 dx for these cases).
 TEST(CraterMeasurement, RimlessCraterIsFlaggedAndBoundedByTheKernelSupport) {

@@ -188,8 +188,8 @@ TEST(Ejecta, FlagsOnlyMovingParticlesAboveThePlaneBeyondTheRadius) {
   EXPECT_EQ(ejecta_csv_row(records[1]), "13,0,4,2.5,7,0,0,7,0,0,3");
 }
 
-// Escape rule (physics.md section 4): inside R_ej, a particle above the plane is ejected when it is faster
-// than the escape speed, rising, and had no neighbour; not when it is slower, falling back towards the
+// Escape rule (docs/physics.md section 4): inside R_ej, a particle above the plane is ejected when it is
+// faster than the escape speed, rising, and had no neighbour; not when it is slower, falling back towards the
 // surface, has neighbours, is below the plane or is fixed.
 TEST(Ejecta, EscapeRuleTakesOnlyFastIsolatedParticlesAboveThePlane) {
   Particles p;

@@ -1,11 +1,11 @@
-// Impact scenario builder (impact_setup.hpp, physics.md section 4): lattice, hemisphere, fixed shell,
+// Impact scenario builder (impact_setup.hpp, docs/physics.md section 4): lattice, hemisphere, fixed shell,
 // lithostatic state, projectile and its point-source stand-in, boulder shapes, quarter symmetry, the
 // [impact] TOML table and the shipped examples.
 //
 // Independent references: lattice counts against the analytic volumes with a rigorous discretisation
 // bound (every node's cell dx^3 lies within sqrt(3)/2 dx of the node, so the cells of the nodes inside a
 // body of radius R cover the body shrunk by sqrt(3)/2 dx and lie inside it grown by the same amount);
-// shapes against physics.md's inequalities written out literally; the lithostatic profile against the
+// shapes against docs/physics.md's inequalities written out literally; the lithostatic profile against the
 // hand value rho g depth and against a GSL ODE integration with the closed-form inverse of the cold
 // Tillotson law; the stand-in against the point-source scaling law in both regimes.
 #include <gtest/gtest.h>
@@ -221,7 +221,7 @@ TEST(ImpactSetup, LithostaticProfileThroughTheCrushCurve) {
 TEST(ImpactSetup, SciStandInKeepsTheCouplingParameter) {
   ImpactSetup s;  // SCI defaults
   const ImpactSummary m = impact_projectile_summary(s, 2700.0);
-  // a = (3 m / (4 pi delta))^(1/3) = (6 / (4 pi 2700))^(1/3) = 0.0561297 m (physics.md: 5.6 cm).
+  // a = (3 m / (4 pi delta))^(1/3) = (6 / (4 pi 2700))^(1/3) = 0.0561297 m (docs/physics.md: 5.6 cm).
   EXPECT_NEAR(m.projectile_radius, 0.0561297, 1e-7);
   EXPECT_EQ(m.model, ProjectileModel::point_source_stand_in);
   EXPECT_DOUBLE_EQ(m.model_radius, 2.0 * 0.25);  // max(a, 2 dx)
@@ -233,8 +233,8 @@ TEST(ImpactSetup, SciStandInKeepsTheCouplingParameter) {
   EXPECT_NEAR(m.model_mass / m.projectile_mass, std::sqrt(0.5 / m.projectile_radius), 1e-12);
   EXPECT_NEAR(m.model_mass, 5.96924, 1e-5);
   EXPECT_NEAR(m.model_density_scale, 11.4004 / 2700.0, 1e-7);
-  // The point-source law (physics.md section 6, Housen & Holsapple form, jutzi2022_ryugu mu = 0.44) gives
-  // the same crater for both projectiles in the gravity and in the strength regime.
+  // The point-source law (docs/physics.md section 6, Housen & Holsapple form, jutzi2022_ryugu mu = 0.44)
+  // gives the same crater for both projectiles in the gravity and in the strength regime.
   const double mu = 0.44, nu = 0.4, H1 = 0.6, H2 = 0.25, rho = 1300.0, U = 2000.0, g = 1.4e-4, Y = 1e3;
   auto gravity_radius = [&](double a, double delta) {
     const double mass = 4.0 / 3.0 * pi * a * a * a * delta;
@@ -250,7 +250,7 @@ TEST(ImpactSetup, SciStandInKeepsTheCouplingParameter) {
               1.0, 1e-12);
   EXPECT_NEAR(strength_radius(m.model_radius, m.model_density) / strength_radius(m.projectile_radius, 2700.0),
               1.0, 1e-12);
-  // A stand-in of the same MASS and the same radius a_s makes a much smaller crater (physics.md).
+  // A stand-in of the same MASS and the same radius a_s makes a much smaller crater (docs/physics.md).
   const double same_mass_density = 2.0 / ball_volume(0.5);
   EXPECT_LT(gravity_radius(0.5, same_mass_density) / gravity_radius(m.projectile_radius, 2700.0), 0.7);
 }
@@ -439,7 +439,7 @@ TEST(ImpactSetup, PhysicsMdBouldersFromTheExample) {
   const ImpactScenario sc = make_impact(s, eta, 1.0, ryugu_gravity);
   const Particles& p = sc.problem.particles;
   const double dx = 0.5;
-  // Every node is where physics.md's table says, written out literally here.
+  // Every node is where docs/physics.md's table says, written out literally here.
   auto boulder_of = [](double x, double y, double z) -> int {
     auto sphere = [&](double cx, double cy, double cz, double r) {
       return (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz) < r * r;
@@ -502,7 +502,7 @@ TEST(ImpactSetup, RunAttributesForTheMeasurement) {
   EXPECT_EQ(a.numbers.at("stand_in_radius"), 0.5);
   EXPECT_NEAR(a.numbers.at("stand_in_mass"), 5.96924, 1e-5);
   EXPECT_NEAR(a.numbers.at("stand_in_density_scale"), 11.4004 / 2700.0, 1e-7);
-  // SCI: 10 x 15 m / 1500 m/s = 0.1 s, physics.md's value.
+  // SCI: 10 x 15 m / 1500 m/s = 0.1 s, docs/physics.md's value.
   ImpactSetup sci;
   sci.particle_spacing = 1.0;
   EXPECT_NEAR(make_impact(sci, eta, 1.0, ryugu_gravity).summary.transition_time, 0.1, 1e-12);

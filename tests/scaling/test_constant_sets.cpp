@@ -60,8 +60,9 @@ TEST(ConstantSets, JutziRyuguReproducesTheObservedSciCrater) {
   const cs::Impactor sci{std::cbrt(3.0 * 2.0 / (4.0 * std::numbers::pi * 2700.0)), 2700.0, 2000.0};
   cs::Target ryugu{*set.target_density, 1.4e-4, *set.strength};
   EXPECT_NEAR(cs::crater_radius(set.law, sci, ryugu), 7.25, 0.8);
-  // physics.md section 6: read as Holsapple's K1, K2, the same numbers make sub-pascal cohesion irrelevant
-  // (the crater stays at its cohesionless size), whereas in their own form 0.5 Pa nearly halves it.
+  // docs/physics.md section 6: read as Holsapple's K1, K2, the same numbers make sub-pascal cohesion
+  // irrelevant (the crater stays at its cohesionless size), whereas in their own form 0.5 Pa nearly halves
+  // it.
   cs::ScalingLaw misread = set.law;
   misread.form = cs::Form::holsapple;
   cs::Target cohesionless = ryugu;

@@ -1,4 +1,4 @@
-// Forward law, limits, regimes, the form identity and the inverse (physics.md section 6).
+// Forward law, limits, regimes, the form identity and the inverse (docs/physics.md section 6).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,7 +27,7 @@ cs::Target ryugu_target(double strength) {
 }
 
 // Reference values below were computed independently by hand in Python (plain float arithmetic of the
-// formulas as printed in physics.md, not the log-space code under test), e.g. for the HH2011 form:
+// formulas as printed in docs/physics.md, not the log-space code under test), e.g. for the HH2011 form:
 //   m = 4/3 pi a^3 delta; pi2 = g a/U^2; pi3 = Y/(rho U^2); pi4 = rho/delta
 //   R = H1 pi4^((2+mu-6nu)/(3(2+mu))) (pi2 + (H1/H2)^((2+mu)/mu) pi4^nu pi3^((2+mu)/2))^(-mu/(2+mu))
 //   (m/rho)^(1/3)

@@ -22,7 +22,7 @@ namespace granular_test {
 inline constexpr double degrees = 180.0 / std::numbers::pi;
 
 // Angle of repose from the friction coefficient, inverting f = 2 sqrt(2) sin(theta) / (3 - sin(theta))
-// (Luther et al. 2022; physics.md section 2): sin(theta) = 3 f / (2 sqrt(2) + f).
+// (Luther et al. 2022; docs/physics.md section 2): sin(theta) = 3 f / (2 sqrt(2) + f).
 inline double repose_angle_degrees(double friction) {
   return std::asin(3.0 * friction / (2.0 * std::sqrt(2.0) + friction)) * degrees;
 }

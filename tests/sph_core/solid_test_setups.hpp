@@ -30,7 +30,7 @@ inline Material elastic_material(double density, double young_modulus, double po
 
 // Granular material: Lundborg yield with cohesion Y0 and friction f (limiting strength far above the
 // pressures of the test, so Y = Y0 + f P), with the linear low-sound-speed law (bulk modulus A) and a
-// shear modulus giving Poisson's ratio nu, as the late-stage medium of physics.md section 3.
+// shear modulus giving Poisson's ratio nu, as the late-stage medium of docs/physics.md section 3.
 inline Material granular_material(double density, double bulk_modulus, double poisson_ratio, double friction,
                                   double cohesion) {
   Material m;

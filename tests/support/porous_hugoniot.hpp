@@ -1,6 +1,6 @@
 #pragma once
 // Shock (Hugoniot) states of a P-alpha porous material, computed independently of the SPH solver from
-// the P-alpha relations (Herrmann 1969; Carroll & Holt 1972; physics.md section 2) and the
+// the P-alpha relations (Herrmann 1969; Carroll & Holt 1972; docs/physics.md section 2) and the
 // Rankine-Hugoniot jump conditions, for the validation "a shock in the porous target (planar impact)
 // reaches the porous Hugoniot state".
 //

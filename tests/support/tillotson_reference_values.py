@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Independent reference values for tests/sph_core/test_tillotson.cpp.
 
-Implements only the pressure of the Tillotson EOS exactly as written in physics.md section 2
+Implements only the pressure of the Tillotson EOS exactly as written in docs/physics.md section 2
 (with craterkit's stated choice: no B chi^2 term for rho < rho0 in the cold / mixed branches),
 in 50-digit arithmetic (mpmath), and obtains dP/drho|_E and dP/dE|_rho by high-precision numerical
 differentiation (mpmath.diff), independently of the analytic derivatives coded in tillotson.hpp.
@@ -13,7 +13,7 @@ from mpmath import mp, mpf, exp, sqrt, diff
 mp.dps = 50
 
 MATERIALS = {
-    # rho0, A, B, E0, E_iv, E_cv, a, b, alpha, beta  (physics.md table)
+    # rho0, A, B, E0, E_iv, E_cv, a, b, alpha, beta  (docs/physics.md table)
     "basalt": (2700, mpf("26.7e9"), mpf("26.7e9"), mpf("487e6"), mpf("4.72e6"), mpf("18.2e6"),
                mpf("0.5"), mpf("1.5"), 5, 5),
     "aluminium": (2700, mpf("75.2e9"), mpf("65.0e9"), mpf("5.0e6"), mpf("3.0e6"), mpf("13.9e6"),

@@ -1,4 +1,4 @@
-// Crater measurement (physics.md section 5); the method and its choices are described in
+// Crater measurement (docs/physics.md section 5); the method and its choices are described in
 // crater_measurement.hpp and docs/crater_measurement.md. The density on the sample columns and the
 // surface height on each are in crater_columns.hpp; this file turns them into the crater, step by step
 // (measure()).
@@ -34,7 +34,6 @@ using crater_detail::column_density;
 using crater_detail::column_surface;
 using crater_detail::ColumnGrid;
 using crater_detail::nan;
-
 
 // The steps that follow the local spacing dx(r) (graded_spacing.hpp; the particle spacing everywhere on
 // a uniform target): a defaulted step is taken at each sample radius from dx(r), so that a graded target

@@ -421,7 +421,7 @@ ImpactSummary impact_projectile_summary(const ImpactSetup& s, double projectile_
                                   number_text(min_projectile_radius_in_spacings) + " " + spacing_key + " = " +
                                   number_text(minimum) + " m (0: max(a, 2 dx))");
     }
-    // Same a delta^nu at the same U (physics.md section 4): delta_s = delta (a/a_s)^(1/nu).
+    // Same a delta^nu at the same U (docs/physics.md section 4): delta_s = delta (a/a_s)^(1/nu).
     out.model_radius = radius;
     out.model_density = s.projectile_density * std::pow(a / radius, 1.0 / s.coupling_exponent);
     out.model_mass = 4.0 / 3.0 * pi * radius * radius * radius * out.model_density;

@@ -100,7 +100,7 @@ StrengthModel read_strength(TomlTable& strength) {
   return law;
 }
 
-// [porosity]: model = "p_alpha" with the crush curve of physics.md section 2 and the porous sound speed,
+// [porosity]: model = "p_alpha" with the crush curve of docs/physics.md section 2 and the porous sound speed,
 // which must not exceed the matrix sound speed.
 PAlphaPorosity read_porosity(TomlTable& porosity, const SolidReference& matrix) {
   (void)porosity.required_text("model", "the porosity model (\"p_alpha\")", {"p_alpha"});

@@ -45,7 +45,7 @@ void write_solver_state(const SolverState& state, RunAttributes& a) {
     a.texts["late_stage"] =
         "matrix equations of state replaced by P_m = A_low (rho_m/rho_m0 - 1); shear moduli scaled by "
         "A_low/A "
-        "(physics.md section 3)";
+        "(docs/physics.md section 3)";
   }
 }
 

@@ -89,7 +89,7 @@ void Simulation::carry_stress_across_switch(const std::vector<double>& stress_fa
     const double lithostatic = p.density[i] * g_down * std::max(0.0, -p.z[i]);
     const double kept = std::clamp(p.pressure[i], 0.0, lithostatic);
     const double pressure = kept + (p.pressure[i] - kept) * factor;
-    // Matrix pressure P_m = alpha P (P-alpha, physics.md section 2) from the new law
+    // Matrix pressure P_m = alpha P (P-alpha, docs/physics.md section 2) from the new law
     // P_m = A_low (rho_m / rho_m0 - 1): rho_m = rho_m0 (1 + alpha P / A_low), capped.
     const double alpha = p.distention[i];
     const double strain = std::clamp(alpha * pressure / law->A, -max_strain, max_strain);

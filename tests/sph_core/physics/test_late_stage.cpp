@@ -24,7 +24,7 @@ double poisson_ratio(double bulk, double shear) {
   return (3.0 * bulk - 2.0 * shear) / (2.0 * (3.0 * bulk + shear));
 }
 
-// Longitudinal signal speed of physics.md section 1, c_L^2 = c^2 + (4/3) G/rho.
+// Longitudinal signal speed of docs/physics.md section 1, c_L^2 = c^2 + (4/3) G/rho.
 double signal_speed(const MaterialState& s, double rho) {
   return std::sqrt(s.sound_speed * s.sound_speed + 4.0 / 3.0 * s.shear_modulus / rho);
 }
@@ -50,7 +50,8 @@ TEST(LateStage, ShippedMaterialsSwitch) {
     EXPECT_EQ(after.porosity.has_value(), before.porosity.has_value());
     EXPECT_EQ(after.name, before.name);
   }
-  // 0.027 MPa on the Ryugu matrix: c = sqrt(2.7e4/2600) = 3.22251693317745 m/s (physics.md: about 3 m/s).
+  // 0.027 MPa on the Ryugu matrix: c = sqrt(2.7e4/2600) = 3.22251693317745 m/s (docs/physics.md: about 3
+  // m/s).
   EXPECT_NEAR(
       evaluate(late_stage_material(load_material("basalt_matrix_ryugu"), kALow).eos, 2600.0, 0.0).sound_speed,
       3.22251693317745, 1e-13);

@@ -1,4 +1,4 @@
-// Loading materials from data/materials/*.toml: the shipped values equal physics.md's table, and bad
+// Loading materials from data/materials/*.toml: the shipped values equal docs/physics.md's table, and bad
 // files fail with an InputError naming the file and the key.
 #include <gtest/gtest.h>
 
@@ -77,7 +77,7 @@ TEST(Material, RyuguMatrixIsBasaltWithSolidDensity2600) {
   EXPECT_EQ(m.shear_modulus, 22.7e9);
 }
 
-// The Ryugu target of physics.md: cohesionless Lundborg with the SCI friction, nominal P-alpha.
+// The Ryugu target of docs/physics.md: cohesionless Lundborg with the SCI friction, nominal P-alpha.
 TEST(Material, RyuguTargetStrengthAndPorosity) {
   const auto m = load_material("basalt_matrix_ryugu");
   ASSERT_TRUE(m.strength.has_value());
@@ -98,7 +98,7 @@ TEST(Material, RyuguTargetStrengthAndPorosity) {
   EXPECT_EQ(m.porosity->porous_sound_speed, 1500.0);
   // Derived by the loader: sqrt(26.7e9 / 2600) = 3204.564052914338 m/s.
   EXPECT_NEAR(m.porosity->matrix_sound_speed, 3204.564052914338, 1e-9);
-  // Nominal bulk density 2600 / 2 = 1300 kg/m^3 (physics.md).
+  // Nominal bulk density 2600 / 2 = 1300 kg/m^3 (docs/physics.md).
   EXPECT_EQ(std::get<Tillotson>(m.eos).reference_density / p.initial_distention, 1300.0);
 }
 
@@ -124,7 +124,7 @@ TEST(Material, ProjectileIsAluminiumWithVonMises) {
   const auto m = load_material("aluminium_projectile");
   const auto& t = std::get<Tillotson>(m.eos);
   const auto& al = std::get<Tillotson>(plate.eos);
-  EXPECT_EQ(t.reference_density, 2700.0);  // physics.md's SCI stand-in density
+  EXPECT_EQ(t.reference_density, 2700.0);  // docs/physics.md's SCI stand-in density
   EXPECT_EQ(t.A, al.A);
   EXPECT_EQ(t.B, al.B);
   EXPECT_EQ(t.E0, al.E0);
@@ -279,7 +279,7 @@ TEST_F(BadMaterialFile, StrengthAndPorosityBlocksLoad) {
   const auto& s = std::get<LundborgStrength>(m.strength.value());
   EXPECT_EQ(s.cohesion, 1e5);
   EXPECT_EQ(s.friction_coefficient, 0.6);
-  EXPECT_EQ(s.limiting_strength, 3.5e9);  // default Y_dm of physics.md
+  EXPECT_EQ(s.limiting_strength, 3.5e9);  // default Y_dm of docs/physics.md
   EXPECT_EQ(m.porosity->crush_curve.exponent_1, 12.0);
   EXPECT_EQ(m.porosity->porous_sound_speed, 1500.0);
   EXPECT_NEAR(m.porosity->matrix_sound_speed, 3144.660377352201, 1e-9);  // sqrt(26.7e9/2700)

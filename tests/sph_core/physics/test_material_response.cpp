@@ -1,6 +1,6 @@
 // Per-particle material evaluation (material_response.hpp): porous pressure and sound speed from the
 // matrix law, the reduced shear modulus, and strength with weakening and the pressure floor, against
-// values computed by hand (mpmath, 30 digits, formulas of physics.md written out independently).
+// values computed by hand (mpmath, 30 digits, formulas of docs/physics.md written out independently).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// P-alpha porosity kernels: the crush curve of physics.md section 2 (continuity, limits, slope) and a
+// P-alpha porosity kernels: the crush curve of docs/physics.md section 2 (continuity, limits, slope) and a
 // quasi-static uniaxial compression driven independently of the solver, which must follow the crush
 // curve (the consistent dalpha/dt of Jutzi et al. 2008) and never re-expand on unloading.
 #include <gtest/gtest.h>

@@ -19,7 +19,8 @@ using test_support::porous_hugoniot_at_pressure;
 constexpr sph::Tillotson kBasaltMatrix{2600.0, 26.7e9, 26.7e9, 487.0e6, 4.72e6, 18.2e6,
                                        0.5,    1.5,    5.0,    5.0,     0.01};
 constexpr sph::Tillotson kAluminium{2700.0, 75.2e9, 65.0e9, 5.0e6, 3.0e6, 13.9e6, 0.5, 1.63, 5.0, 5.0, 0.01};
-const sph::PAlphaParameters kNominal{};  // physics.md: alpha0 = 2, alpha_t = 1.25, P_e/P_t/P_s = 1/68/213 MPa
+const sph::PAlphaParameters
+    kNominal{};  // docs/physics.md: alpha0 = 2, alpha_t = 1.25, P_e/P_t/P_s = 1/68/213 MPa
 
 // Pressures in every part of the crush curve: elastic, first segment, second segment, fully compacted.
 constexpr double kPressures[] = {0.5e6, 2.0e6, 10.0e6, 50.0e6, 67.0e6, 100.0e6, 200.0e6, 300.0e6, 1.0e9};

@@ -1,5 +1,5 @@
 // Tillotson (and ideal-gas) equation of state against independently computed values, and the
-// continuity of the Tillotson branches (physics.md section 2; tillotson.hpp states the choices).
+// continuity of the Tillotson branches (docs/physics.md section 2; tillotson.hpp states the choices).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -16,7 +16,7 @@ using craterkit::sph::evaluate;
 using craterkit::sph::IdealGas;
 using craterkit::sph::Tillotson;
 
-// physics.md table: basalt (Benz & Asphaug 1999), aluminium (Tillotson 1962); c floor 0.01 sqrt(A/rho0).
+// docs/physics.md table: basalt (Benz & Asphaug 1999), aluminium (Tillotson 1962); c floor 0.01 sqrt(A/rho0).
 constexpr Tillotson basalt{2700.0, 26.7e9, 26.7e9, 487.0e6, 4.72e6, 18.2e6, 0.5, 1.5, 5.0, 5.0, 0.01};
 constexpr Tillotson aluminium{2700.0, 75.2e9, 65.0e9, 5.0e6, 3.0e6, 13.9e6, 0.5, 1.63, 5.0, 5.0, 0.01};
 
@@ -32,7 +32,7 @@ struct Reference {
 };
 
 // Produced by tests/support/tillotson_reference_values.py: an independent implementation of the
-// physics.md pressure formulas in 50-digit arithmetic (mpmath), with the derivatives taken by
+// docs/physics.md pressure formulas in 50-digit arithmetic (mpmath), with the derivatives taken by
 // high-precision numerical differentiation (not the analytic derivatives of tillotson.hpp) and
 // c^2 = dP/drho + (P/rho^2) dP/dE floored at 0.01 sqrt(A/rho0). Hand check of the first rows:
 //  - rho = rho0, E = 0: P = 0, c = sqrt(A/rho0) = sqrt(26.7e9/2700) = 3144.66 m/s (basalt),

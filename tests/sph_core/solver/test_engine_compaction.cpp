@@ -1,4 +1,4 @@
-// Compaction of the porous Ryugu target in the solver (physics.md section 2): uniaxial,
+// Compaction of the porous Ryugu target in the solver (docs/physics.md section 2): uniaxial,
 // quasi-static compression of a porous column follows the crush curve alpha_c(P) within 2 % and never
 // re-expands on unloading; on reloading it does not compact again until the curve is met.
 //

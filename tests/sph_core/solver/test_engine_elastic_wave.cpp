@@ -1,4 +1,4 @@
-// Longitudinal elastic wave in a solid (physics.md section 2): the deviatoric stress of
+// Longitudinal elastic wave in a solid (docs/physics.md section 2): the deviatoric stress of
 // Hooke's law with the Jaumann rate makes a compression front travel at
 //   c_L = sqrt((K + 4/3 G) / rho0)        (uniaxial strain)
 // instead of the bulk sound speed sqrt(K/rho0). Aluminium Tillotson near rho0 and E = 0 has K = A.

@@ -1,10 +1,10 @@
 // Granular flow under gravity, the part CI runs: a vertical cut in a cohesive Lundborg material
 // against the Rankine height (the cohesionless repose angles and run-outs are minutes-long runs, in
 // test_engine_granular_slow.cpp), on an elastic floor backed by fixed particles (granular_setup.hpp). The
-// material is the late-stage medium of physics.md section 3: the linear low-sound-speed law with a bulk sound
-// speed of 10 sqrt(g H) (so the flow stays below Mach ~0.15 and the static compression rho g H / A is 1 %),
-// Poisson's ratio 0.3, rho0 = 1500 kg/m^3, g = 9.81 m/s^2. Only the friction and the cohesion matter for the
-// comparisons; the soft, slow medium keeps the runs at a few thousand steps. Docs: docs/validation.md,
+// material is the late-stage medium of docs/physics.md section 3: the linear low-sound-speed law with a bulk
+// sound speed of 10 sqrt(g H) (so the flow stays below Mach ~0.15 and the static compression rho g H / A is 1
+// %), Poisson's ratio 0.3, rho0 = 1500 kg/m^3, g = 9.81 m/s^2. Only the friction and the cohesion matter for
+// the comparisons; the soft, slow medium keeps the runs at a few thousand steps. Docs: docs/validation.md,
 // "Granular flow".
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Planar impact of two Tillotson plates (aluminium on basalt, physics.md section 2) against the
+// Planar impact of two Tillotson plates (aluminium on basalt, docs/physics.md section 2) against the
 // impedance match of the two Tillotson Hugoniots, computed independently by root finding on the
 // Rankine-Hugoniot conditions (tests/support/hugoniot.hpp): the mean pressure and particle
 // velocity of the shocked target and projectile within 5 %.

@@ -1,4 +1,4 @@
-// A shock in the porous Ryugu target in SPH (physics.md section 2): a planar impact of two
+// A shock in the porous Ryugu target in SPH (docs/physics.md section 2): a planar impact of two
 // plates of the porous target material (basalt_matrix_ryugu without its strength, so that the flow is
 // the hydrodynamic one of the reference) must reach the porous Hugoniot state computed independently
 // from the P-alpha relations and the Rankine-Hugoniot conditions (tests/support/porous_hugoniot.hpp),
@@ -36,7 +36,7 @@ void check_porous_plates(double impact_velocity) {
   setup.projectile_thickness = 70 * setup.particle_spacing;
   setup.target_thickness = 70 * setup.particle_spacing;
   config.problem = setup;
-  // Constant Monaghan-Gingold viscosity (alpha = 1, beta = 2, physics.md defaults). With the
+  // Constant Monaghan-Gingold viscosity (alpha = 1, beta = 2, docs/physics.md defaults). With the
   // Morris-Monaghan switch the viscosity decays behind the front and the stiff matrix rings (pressure
   // swinging between -50 and +230 MPa around 107 MPa at 400 m/s); every swing above P_s compacts fully
   // and irreversibly, so the plateau ends at alpha = 1, rho 3 % above the Hugoniot (docs/validation.md).

@@ -1,4 +1,4 @@
-// The late-stage transition in the engine (physics.md section 3): at t_transition every material
+// The late-stage transition in the engine (docs/physics.md section 3): at t_transition every material
 // switches to the low-sound-speed law, the step that would pass it ends on it, the time step grows with the
 // lower sound speed, the switch and the Mach numbers are recorded in the snapshot attributes, and a run
 // resumed from a checkpoint written before or after the switch ends bit for bit where an uninterrupted

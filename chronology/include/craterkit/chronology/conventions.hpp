@@ -1,5 +1,5 @@
 #pragma once
-// Conventions of crater chronology that published work handles in different ways (physics.md sec. 7).
+// Conventions of crater chronology that published work handles in different ways (docs/physics.md sec. 7).
 // Each is explicit here and configurable, with the default stated once.
 #include <string>
 

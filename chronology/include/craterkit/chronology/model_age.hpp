@@ -1,5 +1,5 @@
 #pragma once
-// Model (crater-retention) ages from crater counts (physics.md sec. 7), following the Poisson-likelihood
+// Model (crater-retention) ages from crater counts (docs/physics.md sec. 7), following the Poisson-likelihood
 // approach of Michael et al. (2016, Icarus 277, 279): the craters in a diameter range are a Poisson
 // process whose expected cumulative density after t years is N(>D, t) = t r(D) (or its equilibrium-capped
 // form, conventions.hpp), r the production rate per m^2 per year (production.hpp).

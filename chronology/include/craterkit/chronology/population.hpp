@@ -1,6 +1,6 @@
 #pragma once
 // Impactor populations: the size-frequency distribution of the bodies that hit a target
-// (physics.md sec. 7). Sizes are impactor RADII a in metres inside the library (data files may state
+// (docs/physics.md sec. 7). Sizes are impactor RADII a in metres inside the library (data files may state
 // diameters in km and are converted when read). Numbers are absolute counts of bodies in the
 // population (e.g. the whole main belt), so that with an intrinsic collision probability they give
 // impact rates.

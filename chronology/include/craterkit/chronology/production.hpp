@@ -1,5 +1,5 @@
 #pragma once
-// Crater production (physics.md sec. 7): the number of craters with rim-to-rim diameter larger than D
+// Crater production (docs/physics.md sec. 7): the number of craters with rim-to-rim diameter larger than D
 // formed per unit area per year,
 //   r(D) = < P_i X(a) N(>a(D; U)) / A_surface >_U,
 //   a(D; U)  impactor radius that makes an apparent crater radius R = D / (2 rim_to_apparent) at speed U

@@ -1,6 +1,6 @@
 #pragma once
 // Relative crater-formation rates between two cohesions or two scaling laws, as a function of crater
-// size (physics.md sec. 7): the ratio of production rates r_B(D) / r_A(D). Everything that does not
+// size (docs/physics.md sec. 7): the ratio of production rates r_B(D) / r_A(D). Everything that does not
 // depend on the scaling law (P_i, area, normalisation) cancels.
 //
 // Closed forms for a single power law dN/da ∝ a^q with the target-only cross-section at one speed:

@@ -1,5 +1,5 @@
 #pragma once
-// The link between chronology and the point-source scaling law (physics.md sec. 6): the inverse law
+// The link between chronology and the point-source scaling law (docs/physics.md sec. 6): the inverse law
 // a(R; Y, U) as an ImpactorRadiusFunction for crater production and relative rates.
 #include "craterkit/chronology/production.hpp"
 #include "craterkit/scaling/point_source.hpp"

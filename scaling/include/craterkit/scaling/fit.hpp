@@ -1,5 +1,5 @@
 #pragma once
-// Ceres fit of the point-source law (physics.md section 6) to a table of impacts and crater radii.
+// Ceres fit of the point-source law (docs/physics.md section 6) to a table of impacts and crater radii.
 //
 // Model: ln R_model(row; K1, K2 | H1, H2, mu, nu, [Y]) from the law in the chosen form.
 // Residual of row i: (ln R_model - ln R_i) / s_i with s_i = sigma_i / R_i when the table gives

@@ -1,5 +1,5 @@
 #pragma once
-// Point-source crater scaling (Holsapple 1993; Housen & Holsapple 2011), physics.md section 6.
+// Point-source crater scaling (Holsapple 1993; Housen & Holsapple 2011), docs/physics.md section 6.
 //
 // Two parameterisations of the same function are supported; published constants only make sense
 // in their own form:

@@ -1,6 +1,6 @@
 #pragma once
-// Table of impacts and measured crater radii, the input of the scaling fit (physics.md section 6,
-// architecture.md: "radii.csv -> Ceres fit").
+// Table of impacts and measured crater radii, the input of the scaling fit (docs/physics.md section 6,
+// docs/architecture.md: "radii.csv -> Ceres fit").
 //
 // CSV with a header row naming the columns (any order, SI units, '#' starts a comment line):
 //   impactor_radius, impactor_density, velocity, target_density, gravity, strength, crater_radius

@@ -1,5 +1,5 @@
 #pragma once
-// Crater measurement on a particle set (physics.md section 5).
+// Crater measurement on a particle set (docs/physics.md section 5).
 //
 // The continuum density is interpolated with the SPH kernel WITHOUT normalisation,
 //   rho(x) = sum_j m_j W(|x - x_j|, h_j)      (ejected particles excluded),
@@ -16,7 +16,7 @@
 //     reaches rho_crit (outside the target, or a hole through it);
 //   * rho0, the density on the pre-impact plane z = 0.
 //
-// The crater edge along one ray ("search inward from the rim crest", physics.md section 5):
+// The crater edge along one ray ("search inward from the rim crest", docs/physics.md section 5):
 //   1. the wall: coming inward from max_radius, the first (outermost) sample whose surface lies more
 //      than wall_depth below z = 0. Everything inside it (the floor, fallback clumps on it) is never
 //      looked at by the edge search;
@@ -29,7 +29,7 @@
 // rim is low: an undisturbed plane reads rho0 = rho_crit up to lattice noise.
 //
 // Derived quantities:
-//   crater_radius       mean of the +x, -x, +y, -y edge radii (physics.md section 5);
+//   crater_radius       mean of the +x, -x, +y, -y edge radii (docs/physics.md section 5);
 //   uncertainty         sqrt((s/2)^2 + (spacing/2)^2): s the sample standard deviation of the four radii
 //                       (s/2 the standard error of their mean) and half a particle spacing for the
 //                       resolution of a particle surface (on a graded target the local spacing at the
@@ -117,7 +117,7 @@ struct CraterMeasurementOptions {
   double vertical_step = 0.0;   // m, downward scan step of the surface search; 0: spacing / 4
   double wall_depth = 0.0;      // m, a wall sample lies this far below z = 0; 0: one spacing
   // The particles fill only x >= centre x, y >= centre y of a target symmetric about both planes (a
-  // quarter-domain run with mirror boundaries, physics.md section 4): their mirror images are added
+  // quarter-domain run with mirror boundaries, docs/physics.md section 4): their mirror images are added
   // to the density, and the ejected mass is reported for the full crater (4 x the quarter's).
   bool quarter_symmetric = false;
   std::vector<BoulderSpec> boulders;

@@ -1,6 +1,7 @@
 #pragma once
-// The local particle spacing of a graded-resolution impact target (physics.md section 4; graded_target.hpp,
-// docs/impact_setup.md "Graded resolution"), as a function of the distance r from the impact point.
+// The local particle spacing of a graded-resolution impact target (docs/physics.md section 4;
+// graded_target.hpp, docs/impact_setup.md "Graded resolution"), as a function of the distance r from the
+// impact point.
 //
 // The target has a uniform core of spacing dx0 for r < R_c and, outside it, hemispherical shells whose
 // thickness grows by the factor (1 + s) from one shell to the next, dx_{k+1} = min(dx_max, dx_k (1 + s)),

@@ -1,5 +1,5 @@
 #pragma once
-// Geometry of a graded-resolution impact target (physics.md section 4: "refine the particles near the
+// Geometry of a graded-resolution impact target (docs/physics.md section 4: "refine the particles near the
 // impact point"; docs/impact_setup.md "Graded resolution"). Pure geometry: positions, cell volumes and
 // local spacings; make_impact() (impact_setup.hpp) gives them materials, masses and the lithostatic state.
 //
@@ -18,7 +18,7 @@
 //        (a 2 x 2 lattice column of spacing t around the axis below the impact point);
 //      top band 0 < u < t/r: at radius r it spans -t < z < 0, and its ring lies at z = -t/2 exactly, so the
 //        free surface is flat and the top layer lies half a local spacing below z = 0 everywhere, as on the
-//        uniform lattice (physics.md section 4; the crater measurement's rho_initial/2 convention);
+//        uniform lattice (docs/physics.md section 4; the crater measurement's rho_initial/2 convention);
 //      in between, n = round(r (theta_top - theta_cap) / t) bands of equal width in theta (arc ~ t), each
 //        ring at the middle of its band in u, which halves the band's area (Archimedes: a spherical zone's
 //        area is proportional to its height), with N = 4 max(1, round(A / (4 t^2))) points (A the zone

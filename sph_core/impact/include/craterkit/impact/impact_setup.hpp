@@ -1,5 +1,5 @@
 #pragma once
-// The impact scenario of physics.md section 4: a projectile striking a porous, lithostatically
+// The impact scenario of docs/physics.md section 4: a projectile striking a porous, lithostatically
 // loaded half-space target cut to a hemisphere, with optional boulders. Defaults are the Hayabusa2 SCI
 // case. Documented for users in docs/impact_setup.md.
 //
@@ -26,7 +26,7 @@
 //    is then at z = +dx/2, one spacing above the top target layer, as in the lattice itself.
 //  - Velocity: speed U at angle theta from the vertical, moving towards +x: U (sin theta, 0, -cos theta).
 //
-// Projectile model (physics.md section 4):
+// Projectile model (docs/physics.md section 4):
 //  - resolved: the real projectile, radius a = (3 m / (4 pi delta))^(1/3), density delta, mass m.
 //  - point_source_stand_in: where a is too small for the lattice, a sphere of radius a_s (default
 //    max(a, 2 dx)) with the same point-source coupling parameter a delta^nu U^mu at the same U:
@@ -60,8 +60,8 @@
 // (alpha_c(P), which is alpha0 below P_e), S = 0, E = 0, v = 0; mass rho dx^3; h = eta dx (the projectile:
 // eta (m/rho)^(1/3)). Sound speed and pressure from material_response.hpp's evaluate_material().
 //
-// Late-stage transition (physics.md section 3): t_transition defaults to 10 L / c with L = R_dom and c the
-// bulk sound speed of the undisturbed porous target at the surface (evaluate_material at alpha0, E = 0):
+// Late-stage transition (docs/physics.md section 3): t_transition defaults to 10 L / c with L = R_dom and c
+// the bulk sound speed of the undisturbed porous target at the surface (evaluate_material at alpha0, E = 0):
 // 10 x 15 m / 1500 m/s = 0.1 s for SCI. A_low defaults to 0.027 MPa (Jutzi et al. 2022). The set-up only
 // computes and records them; the switch is the engine's.
 #include <array>

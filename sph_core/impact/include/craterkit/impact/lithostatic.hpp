@@ -1,5 +1,5 @@
 #pragma once
-// Lithostatic initial state of an impact target (physics.md section 4): at rest under constant gravity g
+// Lithostatic initial state of an impact target (docs/physics.md section 4): at rest under constant gravity g
 // with S = 0 and specific internal energy E = 0, the bulk pressure obeys dP/d(depth) = rho(P) g, where the
 // bulk density rho(P) follows from the material's equation of state at E = 0:
 //   non-porous:  P_m(rho, 0) = P                          -> rho

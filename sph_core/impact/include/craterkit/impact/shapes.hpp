@@ -1,7 +1,7 @@
 #pragma once
-// Solid shapes for placing boulders in an impact target (physics.md section 4; impact_setup.hpp).
+// Solid shapes for placing boulders in an impact target (docs/physics.md section 4; impact_setup.hpp).
 // A Shape is the INTERSECTION of its parts: a point belongs to it when every part contains it. One part
-// gives the primitive itself (a sphere); several parts give blocks such as physics.md's boulder 4,
+// gives the primitive itself (a sphere); several parts give blocks such as docs/physics.md's boulder 4,
 //   sqrt(x^2 + y^2) < 9, x < -2, |y| < 5, -5 < z < 0.5
 //   = cylinder(axis (0, 0), radius 9) ∩ half-space(x < -2) ∩ box(y in (-5, 5), z in (-5, 0.5)).
 // All inequalities are strict (a point on a boundary is outside), and all lengths are in m.

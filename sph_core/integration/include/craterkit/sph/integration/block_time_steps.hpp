@@ -1,5 +1,5 @@
 #pragma once
-// Block (individual, power-of-two) time steps (physics.md section 1: "small or fast particles then do
+// Block (individual, power-of-two) time steps (docs/physics.md section 1: "small or fast particles then do
 // not hold the whole system to their step"), as in GADGET-2 (Springel 2005, section 4) and Phantom
 // (Price et al. 2018, section 2.3.4), on the KDK integrator of integrator.hpp.
 //

@@ -15,7 +15,7 @@
 //             returned to the crush curve, stress_rates.hpp)
 //
 // Fixed and ejected particles are not advanced. The smoothing length follows the density,
-// h ~ (m / rho)^(1/3) (physics.md section 1: dh/dt = -(h/3) (drho/dt)/rho, applied as the ratio of
+// h ~ (m / rho)^(1/3) (docs/physics.md section 1: dh/dt = -(h/3) (drho/dt)/rho, applied as the ratio of
 // the cube roots of the densities before and after each update), and is in addition steered
 // towards the neighbour number of the lattice, N_target = (4 pi / 3) (2 eta)^3 (58 for eta = 1.2),
 // whenever a particle's count leaves the band N_target (1 +- neighbour_band): by the factor

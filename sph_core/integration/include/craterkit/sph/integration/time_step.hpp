@@ -1,5 +1,5 @@
 #pragma once
-// Adaptive global time step (physics.md section 1):
+// Adaptive global time step (docs/physics.md section 1):
 //   dt = min over active particles of
 //        C   h / (c + 1.2 (alpha c + beta max|mu|))   (Courant, with the viscous signal speed),
 //        C_a sqrt(h / |a|)                            (acceleration),

@@ -1,7 +1,7 @@
 #pragma once
 // SPH smoothing kernels in 3D, both with compact support 2h (q = r/h < 2).
 //
-// Pairs use the kernel evaluated at the mean smoothing length hbar = (h_i + h_j)/2 (physics.md
+// Pairs use the kernel evaluated at the mean smoothing length hbar = (h_i + h_j)/2 (docs/physics.md
 // section 1, "W at the mean h"), so the pair support is r < h_i + h_j, the same symmetric criterion
 // the neighbour search uses, and W_ij = W_ji exactly: the pair forces are antisymmetric.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Mirror (symmetry-plane) boundaries: how a neighbour-list entry names a particle or one of its mirror
-// images, and the state of the image as a pair loop must see it (physics.md section 4: a vertical impact
+// images, and the state of the image as a pair loop must see it (docs/physics.md section 4: a vertical impact
 // into a target symmetric about x = 0 and y = 0 runs on the quarter x > 0, y > 0).
 //
 // A mirror plane x_a = L_a on axis a stands for the missing half of a symmetric system: the particles

@@ -1,10 +1,10 @@
 #pragma once
-// Deviatoric stress kinematics (physics.md section 2, "Strength"): Hooke's law with the Jaumann rate,
+// Deviatoric stress kinematics (docs/physics.md section 2, "Strength"): Hooke's law with the Jaumann rate,
 // the second invariant, radial return to the yield surface, and the deviatoric strain-rate invariant
 // that drives strain weakening. Free functions on plain 3x3 arrays so that the per-particle loop of the
 // solver and the independent strain-path driver of the tests call the very same kernels.
 //
-// Conventions (physics.md section 1): (grad v)_ab = dv_a / dx_b; strain rate eps_dot = sym(grad v);
+// Conventions (docs/physics.md section 1): (grad v)_ab = dv_a / dx_b; strain rate eps_dot = sym(grad v);
 // rotation rate Omega = (grad v - grad v^T) / 2.
 #include <algorithm>
 #include <array>
@@ -27,7 +27,7 @@ inline double second_invariant(const DeviatoricStress& s) noexcept {
   return 0.5 * (s.xx * s.xx + s.yy * s.yy + zz * zz) + s.xy * s.xy + s.xz * s.xz + s.yz * s.yz;
 }
 
-// Jaumann stress rate with Hooke's law (physics.md section 2):
+// Jaumann stress rate with Hooke's law (docs/physics.md section 2):
 //   dS/dt = 2 G (eps_dot - tr(eps_dot)/3 I) + S Omega^T + Omega S.
 inline DeviatoricStress jaumann_stress_rate(const DeviatoricStress& s, const Tensor3& velocity_gradient,
                                             double shear_modulus) noexcept {
@@ -63,7 +63,7 @@ inline DeviatoricStress radial_return(const DeviatoricStress& s, double yield_st
 }
 
 // sqrt(eps_dot' : eps_dot' / 2), eps_dot' the deviatoric strain rate: the rate at which the
-// accumulated total strain grows (our choice for strain weakening; physics.md leaves total or plastic).
+// accumulated total strain grows (our choice for strain weakening; docs/physics.md leaves total or plastic).
 inline double deviatoric_strain_rate_invariant(const Tensor3& velocity_gradient) noexcept {
   const Tensor3& L = velocity_gradient;
   const double trace_third = (L[0][0] + L[1][1] + L[2][2]) / 3.0;

@@ -1,5 +1,5 @@
 #pragma once
-// Late-stage transition to a low-sound-speed medium (Raducan et al. 2022; physics.md section 3).
+// Late-stage transition to a low-sound-speed medium (Raducan et al. 2022; docs/physics.md section 3).
 // At t_transition every material's matrix equation of state is replaced by the energy-free linear law
 // P_m = A_low (rho_m/rho_m0 - 1) (low_sound_speed.hpp) with the same reference density rho_m0, and its
 // shear modulus is scaled by the same factor A_low/A (A the bulk modulus of the law it replaces), which

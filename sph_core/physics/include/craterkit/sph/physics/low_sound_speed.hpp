@@ -1,6 +1,6 @@
 #pragma once
 // Linear, energy-free "low sound speed" law of the late stage of a crater simulation (Raducan et al.
-// 2022; physics.md section 3): after the shock has passed, the matrix equation of state is replaced by
+// 2022; docs/physics.md section 3): after the shock has passed, the matrix equation of state is replaced by
 //   P_m = A_low (rho_m / rho_m0 - 1),
 // whose sound speed c = sqrt(A_low / rho_m0) can be chosen orders of magnitude below the shock-stage
 // value (Jutzi et al. 2022 used A_low ~ 0.027 MPa, c ~ 3 m/s), so the time step of the slow granular

@@ -15,7 +15,7 @@
 
 namespace craterkit::sph {
 
-// Yield model (physics.md section 2): pressure-dependent Lundborg for the target and boulders,
+// Yield model (docs/physics.md section 2): pressure-dependent Lundborg for the target and boulders,
 // constant von Mises for the projectile.
 using StrengthModel = std::variant<LundborgStrength, VonMisesStrength>;
 

@@ -1,5 +1,5 @@
 #pragma once
-// Per-particle evaluation of a material (physics.md section 2): the bulk pressure and sound speed of a
+// Per-particle evaluation of a material (docs/physics.md section 2): the bulk pressure and sound speed of a
 // (possibly porous) material from its matrix equation of state, the shear modulus reduced in porous
 // material, and the yield strength and pressure floor for the radial return. Free inline functions,
 // called once per particle by the solver's per-particle phase; no allocation, no virtual call.
@@ -14,12 +14,12 @@
 //    and c_e at alpha0; under load c follows the stiffening of the matrix.
 //    Caveat: this is the elastic wave speed of Jutzi's model, whose elastic branch
 //    dalpha/dP = alpha^2/K_s (1 - 1/h^2) softens the response to exactly h c_s. With alpha frozen below
-//    P_e (physics.md; distention_rate() of p_alpha.hpp), P = P_m(alpha rho, E)/alpha has
+//    P_e (docs/physics.md; distention_rate() of p_alpha.hpp), P = P_m(alpha rho, E)/alpha has
 //    dP/drho|_E = dP_m/drho_m and (P/rho^2) dP/dE = (P_m/rho_m^2) dP_m/dE, so elastic waves travel at
 //    c_m, up to 1/h = 2.1 times faster than c at alpha0: the time step should use matrix_sound_speed.
 //  - Shear modulus: G(alpha) = G_m h(alpha)^2 / alpha. The bulk modulus of the cold porous material is
 //    K = rho c^2 = K_m h^2 / alpha (rho = rho_m0/alpha), so this keeps the matrix's Poisson ratio at every
-//    distention, as the late-stage switch does (physics.md section 3). It reduces to G/alpha for
+//    distention, as the late-stage switch does (docs/physics.md section 3). It reduces to G/alpha for
 //    c_e = c_s; for c_e << c_s plain G/alpha would give a negative Poisson ratio (G > 3K/2).
 //  - Strength: Lundborg with the strain-weakened cohesion, its tension rule and pressure floor
 //    (yield_strength.hpp); von Mises constant Y with no pressure floor (the projectile's tension is

@@ -1,7 +1,7 @@
 #pragma once
 // P-alpha porosity model (Herrmann 1969; Carroll & Holt 1972) with the two-slope crush curve and the
-// consistent distention rate of Jutzi, Benz & Michel (2008, eqs. 8-13), as stated in physics.md section 2.
-// Distention alpha = rho_matrix / rho >= 1; bulk pressure P = P_m(rho_matrix, E) / alpha.
+// consistent distention rate of Jutzi, Benz & Michel (2008, eqs. 8-13), as stated in docs/physics.md
+// section 2. Distention alpha = rho_matrix / rho >= 1; bulk pressure P = P_m(rho_matrix, E) / alpha.
 #include <algorithm>
 #include <cmath>
 
@@ -17,7 +17,7 @@ struct PAlphaParameters {
   double exponent_2 = 3.0;              // n2
 };
 
-// alpha_c(P): the crush curve of physics.md section 2.
+// alpha_c(P): the crush curve of docs/physics.md section 2.
 inline double crush_curve_distention(const PAlphaParameters& p, double pressure) noexcept {
   if (pressure <= p.elastic_pressure) return p.initial_distention;
   if (pressure >= p.solid_pressure) return 1.0;
@@ -52,7 +52,7 @@ struct MatrixResponse {
   double dpressure_denergy;   // dP_m / dE at constant rho_m
 };
 
-// dalpha/dt during plastic compaction (Jutzi et al. 2008, eq. 13 as written in physics.md):
+// dalpha/dt during plastic compaction (Jutzi et al. 2008, eq. 13 as written in docs/physics.md):
 //   dalpha/dt = (dalpha_c/dP) [dE/dt dP_m/dE + alpha drho/dt dP_m/drho_m]
 //               / [alpha + (dalpha_c/dP) (P - rho dP_m/drho_m)],
 // applied only while loading (the bracket, proportional to the matrix pressure rate, is positive) and on

@@ -1,7 +1,7 @@
 #pragma once
 // Tillotson equation of state for solids under shock (Tillotson 1962, General Atomic report GA-3216;
 // Melosh 1989, "Impact Cratering", appendix II; parameters of Benz & Asphaug 1999), as stated in
-// physics.md section 2. eta = rho/rho0, chi = eta - 1, E specific internal energy, and
+// docs/physics.md section 2. eta = rho/rho0, chi = eta - 1, E specific internal energy, and
 // omega = E / (E0 eta^2) + 1.
 //
 // Branches:
@@ -50,7 +50,7 @@ struct Tillotson {
   double E_cv;                             // energy of complete vaporisation, J/kg
   double a;                                // dimensionless
   double b;                                // dimensionless
-  double alpha;                            // alpha_T of physics.md, dimensionless
+  double alpha;                            // alpha_T of docs/physics.md, dimensionless
   double beta;                             // dimensionless
   double min_sound_speed_fraction = 0.01;  // c_min / sqrt(A/rho0)
 };

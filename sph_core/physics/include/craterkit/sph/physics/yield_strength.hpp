@@ -1,9 +1,9 @@
 #pragma once
-// Yield strength of the target, boulders and projectile (physics.md section 2, "Strength").
+// Yield strength of the target, boulders and projectile (docs/physics.md section 2, "Strength").
 //
 // Lundborg (1967) pressure-dependent yield, in the form of Collins, Melosh & Ivanov (2004, eq. 4):
 //   Y(P) = Y0 + f P / (1 + f P / (Y_dm - Y0))          for P >= 0,
-// extended linearly into tension (physics.md): Y(P) = max(0, Y0 + f P) for P < 0, which reaches zero
+// extended linearly into tension (docs/physics.md): Y(P) = max(0, Y0 + f P) for P < 0, which reaches zero
 // at the tensile strength P = -Y0/f. Independently the pressure is floored at
 //   P_min = -Y0 min(1, 1/f),
 // whichever limit is reached first. Both use the current, strain-weakened cohesion (below), so a
@@ -30,7 +30,7 @@ inline double friction_from_repose_angle(double repose_angle_radians) noexcept {
   return 2.0 * std::sqrt(2.0) * s / (3.0 - s);
 }
 
-// Strain weakening (physics.md; cf. Collins et al. 2008): cohesion falls linearly with the accumulated
+// Strain weakening (docs/physics.md; cf. Collins et al. 2008): cohesion falls linearly with the accumulated
 // total strain and is lost at total_strain >= 1.
 inline double weakened_cohesion(double cohesion, double total_strain) noexcept {
   return cohesion * std::max(0.0, 1.0 - total_strain);

@@ -1,5 +1,5 @@
 #pragma once
-// Hydrodynamic rates of change (physics.md section 1): continuity density, momentum, specific
+// Hydrodynamic rates of change (docs/physics.md section 1): continuity density, momentum, specific
 // internal energy, Monaghan-Gingold artificial viscosity with an optional Morris-Monaghan switch,
 // and the Randles-Libersky corrected velocity gradient that will drive the stress rate.
 //
@@ -10,13 +10,13 @@
 // Material physics (equations of state) is evaluated per particle before this pass
 // (rates_pressure.hpp); the pair loop only reads P, c, 1/rho and m/rho.
 //
-// Equations for fluids (physics.md section 1), with one deviation in the continuity equation:
+// Equations for fluids (docs/physics.md section 1), with one deviation in the continuity equation:
 //   drho_i/dt = rho_i sum_j (m_j/rho_j) v_ij . grad_i W_ij    (= -rho_i div v_i)
 //   dv_i/dt   = sum_j m_j (sigma_i/rho_i^2 + sigma_j/rho_j^2 - Pi_ij I) . grad_i W_ij + g
 //   du_i/dt   = (P_i/rho_i^2) sum_j m_j v_ij . grad_i W_ij + (1/rho_i) S_i : U_i
 //               + (1/2) sum_j m_j Pi_ij v_ij . grad_i W_ij,   U_i = (1/rho_i) sum_j m_j (v_j - v_i) (x)
 //               grad_i W_ij
-// physics.md writes sum_j m_j v_ij . grad_i W_ij for drho/dt; the two agree where the density is
+// docs/physics.md writes sum_j m_j v_ij . grad_i W_ij for drho/dt; the two agree where the density is
 // smooth, but with m_j the relative rate (1/rho_i) drho_i/dt of a particle much less dense than its
 // neighbours grows as 1/rho_i and drives its density to zero in finite time (seen in the hot centre
 // of the Sedov blast, where the time step then collapsed). The energy equation keeps the m_j form,
@@ -33,7 +33,7 @@
 // Solids (RateOptions::solid: a material has strength) use the kernel-gradient correction L of every
 // particle (gradient_correction.hpp: in the force the L of the previous evaluation, Particles::correction_*;
 // in the stress rate the one this pass computes) in the stress divergence and its work term, not only in the
-// velocity gradient of the stress rate (physics.md section 1):
+// velocity gradient of the stress rate (docs/physics.md section 1):
 //   dv_i/dt   = sum_j m_j (sigma_i L_i/rho_i^2 + sigma_j L_j/rho_j^2 - Pi_ij I) . grad_i W_ij + g,
 //   du_i/dt   = -sum_j m_j v_ij . (sigma_i L_i/rho_i^2) grad_i W_ij
 //               + (1/2) sum_j m_j Pi_ij v_ij . grad_i W_ij,
@@ -65,11 +65,11 @@
 #include <string_view>
 #include <vector>
 
-#include "craterkit/sph/rates/artificial_stress.hpp"
 #include "craterkit/sph/particles/kernel.hpp"
 #include "craterkit/sph/particles/mirror_image.hpp"
 #include "craterkit/sph/particles/particle_selection.hpp"
 #include "craterkit/sph/particles/particles.hpp"
+#include "craterkit/sph/rates/artificial_stress.hpp"
 
 namespace craterkit::sph {
 
@@ -148,7 +148,7 @@ struct RateWorkspace {
 
 struct RateSummary {
   // min over active particles of h_i / (c_i + 1.2 (alpha_i c_i + beta_i max_j |mu_ij|)): the Courant
-  // time of physics.md section 1 before the factor C.
+  // time of docs/physics.md section 1 before the factor C.
   double min_signal_time = std::numeric_limits<double>::infinity();
   std::uint64_t interacting_pairs = 0;  // (i, j) entries with r < h_i + h_j, both orders counted
 };

@@ -1,9 +1,9 @@
 #pragma once
-// Solid mechanics per particle (physics.md section 2, "Strength"), the two halves around the pair pass:
+// Solid mechanics per particle (docs/physics.md section 2, "Strength"), the two halves around the pair pass:
 //  - update_material_state(): before the pair pass, for runs with at least one [strength] or
 //    [porosity] material (the solid group must be allocated).
 //    Bulk pressure (with the strength model's floor), the longitudinal signal speed
-//    c_L = sqrt(c^2 + 4/3 G/rho) (physics.md section 1) in Particles::sound_speed, so that the Courant
+//    c_L = sqrt(c^2 + 4/3 G/rho) (docs/physics.md section 1) in Particles::sound_speed, so that the Courant
 //    step and the viscosity see the fastest elastic wave, the shear modulus G, and the radial return of
 //    the deviatoric stress onto the yield surface of the current state (deviatoric_stress.hpp). Calling
 //    it after each update of the stress (predict and correct) is the "radial return after each step".
@@ -12,15 +12,15 @@
 //    sqrt(eps_dot':eps_dot'/2), stored in Particles for the integrator.
 //  - compute_distention_rates(): after the pair pass, the P-alpha distention rate dalpha/dt of
 //    Jutzi et al. (2008) (p_alpha.hpp) from the pair pass's drho/dt and du/dt at the same state.
-// Porous materials (physics.md section 2, "Porosity"; rules in material_response.hpp):
+// Porous materials (docs/physics.md section 2, "Porosity"; rules in material_response.hpp):
 //  - update_material_state() evaluates P = P_m(alpha rho, E)/alpha and G(alpha) = G_m h^2/alpha, and puts
 //    a state left above the crush curve back on it (return_to_crush_curve), the P-alpha analogue of the
 //    radial return, after each update of alpha (predict and correct).
-//  - Below P_e and on unloading alpha is frozen (physics.md), so the pressure responds with the matrix
+//  - Below P_e and on unloading alpha is frozen (docs/physics.md), so the pressure responds with the matrix
 //    sound speed c_m: the signal speed for the time step and the viscosity is
 //    c_L = sqrt(c_m^2 + 4/3 G(alpha)/rho), the fastest wave the porous material carries (the compaction
 //    wave on the crush curve is slower). The reduced bulk sound speed h(alpha) c_m of Jutzi's elastic
-//    branch is not used by the solver: it belongs to a reversible elastic dalpha/dP, which physics.md
+//    branch is not used by the solver: it belongs to a reversible elastic dalpha/dP, which docs/physics.md
 //    excludes (alpha never increases).
 //  - The stress S is the bulk deviatoric stress, evolved with the reduced G(alpha); it is not divided
 //    by alpha again in the momentum equation.
@@ -29,8 +29,8 @@
 #include <span>
 #include <vector>
 
-#include "craterkit/sph/physics/material.hpp"
 #include "craterkit/sph/particles/particles.hpp"
+#include "craterkit/sph/physics/material.hpp"
 #include "craterkit/sph/rates/rates.hpp"
 
 namespace craterkit::sph {

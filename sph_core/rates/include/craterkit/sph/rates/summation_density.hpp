@@ -8,7 +8,7 @@
 // a particle whose neighbours move away is only as good as the rate that was integrated; in the hot,
 // rarefied centre of a point blast that leaves the deposit's particles with too much density and pressure
 // (docs/validation.md, Sedov). The summation sees where the neighbours are. It is not for impacts
-// (physics.md section 1): at free surfaces it underestimates the density (missing neighbours) and it
+// (docs/physics.md section 1): at free surfaces it underestimates the density (missing neighbours) and it
 // knows nothing of porosity, which is why the continuity equation is the default.
 #include <array>
 #include <string_view>

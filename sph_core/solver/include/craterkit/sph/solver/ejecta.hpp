@@ -1,7 +1,7 @@
 #pragma once
-// Ejecta leaving the simulated domain (physics.md section 4).
+// Ejecta leaving the simulated domain (docs/physics.md section 4).
 //
-// Rule (physics.md section 4; docs/impact_setup.md, "Ejecta"): a moving particle (neither fixed nor
+// Rule (docs/physics.md section 4; docs/impact_setup.md, "Ejecta"): a moving particle (neither fixed nor
 // already ejected) above the pre-impact plane (z > 0) is ejected when
 //  - it is farther than R_ej from the impact point (the origin), |x| > R_ej with R_ej = R_dom the domain
 //    radius: it has left the domain, nothing it meets any more is simulated (the fixed shell ends at R_dom),

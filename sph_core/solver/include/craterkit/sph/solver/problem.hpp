@@ -11,10 +11,10 @@
 
 namespace craterkit::sph {
 
-// The late-stage switch planned for a run (physics/late_stage.hpp, physics.md section 3): at transition_time
-// every material id switches to the low-sound-speed law with its own A_low[id] (Pa). Empty A_low: no
-// switch. Per material because a density-scaled stand-in projectile (impact/impact_setup.hpp) needs A_low
-// scaled by its density factor k to keep the sound speed of the material it stands for.
+// The late-stage switch planned for a run (physics/late_stage.hpp, docs/physics.md section 3): at
+// transition_time every material id switches to the low-sound-speed law with its own A_low[id] (Pa). Empty
+// A_low: no switch. Per material because a density-scaled stand-in projectile (impact/impact_setup.hpp) needs
+// A_low scaled by its density factor k to keep the sound speed of the material it stands for.
 struct LateStagePlan {
   double transition_time = 0.0;  // s
   std::vector<double> A_low;     // Pa, index = material id

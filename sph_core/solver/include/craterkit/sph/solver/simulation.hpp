@@ -14,8 +14,8 @@
 // strength) the same per-particle phase evaluates the porous pressure and returns states to the crush
 // curve, and the distention rate follows the pair pass. Fluid-only runs take the fluid path unchanged.
 //
-// Late-stage transition (physics/late_stage.hpp, physics.md section 3): when the problem plans one, the step
-// that would pass t_transition is shortened to end on it; after that step every material switches to the
+// Late-stage transition (physics/late_stage.hpp, docs/physics.md section 3): when the problem plans one, the
+// step that would pass t_transition is shortened to end on it; after that step every material switches to the
 // low-sound-speed law, the equation of state and the rates are evaluated again with the new laws (so the
 // integrator's stored rates belong to the switched medium), and the time step follows the new sound speeds.
 // Each particle carries across the switch (carry_stress_across_switch()) its velocity, its lithostatic
