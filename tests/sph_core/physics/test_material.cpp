@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -11,14 +12,17 @@
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/physics/material_response.hpp"
 
 namespace {
 
 using craterkit::InputError;
+using craterkit::sph::evaluate_material;
 using craterkit::sph::IdealGas;
 using craterkit::sph::load_material;
 using craterkit::sph::LowSoundSpeed;
 using craterkit::sph::LundborgStrength;
+using craterkit::sph::Material;
 using craterkit::sph::material_names;
 using craterkit::sph::Tillotson;
 using craterkit::sph::VonMisesStrength;
@@ -395,3 +399,32 @@ TEST_F(BadMaterialFile, LowSoundSpeedLawLoads) {
 }
 
 }  // namespace
+
+// The 30 % and 60 % porous targets are the 50 % target's material at another initial compaction: the same
+// matrix, strength and crush curve; alpha0 = 1/(1 - phi), so the bulk density at rest is 2600 (1 - phi); and
+// their unloaded sound speed is the one the 50 % target's P-alpha response gives at that distention (its
+// h(alpha) line from c_s at alpha = 1 to 1500 m/s at alpha = 2), so the three share one sound-speed law.
+TEST(Material, PorosityVariantsLieOnTheNominalTargetsLine) {
+  const Material nominal = load_material("basalt_matrix_ryugu");
+  for (const auto& [name, phi] :
+       {std::pair{"basalt_matrix_ryugu_30", 0.3}, std::pair{"basalt_matrix_ryugu_60", 0.6}}) {
+    const Material m = load_material(name);
+    ASSERT_TRUE(m.porosity.has_value()) << name;
+    const double alpha0 = m.porosity->crush_curve.initial_distention;
+    EXPECT_NEAR(alpha0, 1.0 / (1.0 - phi), 1e-12) << name;
+    EXPECT_NEAR(2600.0 / alpha0, 2600.0 * (1.0 - phi), 1e-9) << name;
+    EXPECT_EQ(m.shear_modulus, nominal.shear_modulus) << name;
+    EXPECT_EQ(m.porosity->crush_curve.transition_distention,
+              nominal.porosity->crush_curve.transition_distention);
+    EXPECT_EQ(m.porosity->crush_curve.solid_pressure, nominal.porosity->crush_curve.solid_pressure);
+    // Cold and unloaded at alpha0: the variant's own c_e is on the line c_s + (alpha - 1)(1500 m/s - c_s).
+    const double c_s = std::sqrt(26.7e9 / 2600.0);
+    const double own = evaluate_material(m, 2600.0 / alpha0, 0.0, alpha0, 0.0).sound_speed;
+    EXPECT_NEAR(own, c_s + (alpha0 - 1.0) * (1500.0 - c_s), 0.06) << name;  // c_e is written to 0.1 m/s
+    // Within the nominal target's range of distention (30 %), that is its own P-alpha response there.
+    if (alpha0 < 2.0) {
+      EXPECT_NEAR(own, evaluate_material(nominal, 2600.0 / alpha0, 0.0, alpha0, 0.0).sound_speed, 0.06)
+          << name;
+    }
+  }
+}
