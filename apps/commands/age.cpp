@@ -22,6 +22,7 @@
 #include "command_registry.hpp"
 #include "craterkit/chronology/body.hpp"
 #include "craterkit/chronology/crater_counts.hpp"
+#include "craterkit/chronology/law_propagation.hpp"
 #include "craterkit/chronology/model_age.hpp"
 #include "craterkit/chronology/population.hpp"
 #include "craterkit/chronology/production.hpp"
@@ -29,6 +30,7 @@
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "law_uncertainty_flags.hpp"
 #include "production_flags.hpp"
 #include "scaling_flags.hpp"
 
@@ -47,6 +49,7 @@ struct AgeOptions {
   std::optional<double> max_diameter;
   std::optional<double> equilibrium;
   std::optional<std::string> plot;
+  craterkit::cli::LawUncertaintyFlags uncertainty;
   bool json = false;
 };
 
@@ -138,6 +141,7 @@ void run_age(const AgeOptions& o) {
   target.density = o.scaling.target_density.value_or(body.bulk_density);
   target.gravity = o.scaling.gravity.value_or(body.surface_gravity);
   const double impactor_density = o.scaling.impactor_density.value_or(o.production.impactor_density);
+  const auto draws = craterkit::cli::draw_laws(inputs, o.uncertainty);
 
   // Observed cumulative SFD (per km^2) for the figure.
   nlohmann::json observed = nlohmann::json::array();
@@ -190,6 +194,14 @@ void run_age(const AgeOptions& o) {
                     {"isochron", isochron},
                     {"age_grid_yr", downsample(est.age_grid, 400)},
                     {"density_per_yr", downsample(est.density, 400)}});
+    if (draws) {
+      const auto spread = ck::model_age_spread(counts, setup, draws->laws, target, impactor_density, fit);
+      ages.back()["scaling_law_uncertainty"] = {
+          {"median_yr", craterkit::cli::percentiles_json(spread.median)}};
+      ages.back()["total_uncertainty"] = {{"median_yr", spread.total_median},
+                                          {"sigma1_yr", {spread.total_sigma1_low, spread.total_sigma1_high}},
+                                          {"sigma2_yr", {spread.total_sigma2_low, spread.total_sigma2_high}}};
+    }
   }
 
   nlohmann::json out;
@@ -199,6 +211,16 @@ void run_age(const AgeOptions& o) {
                    {"craters", counts.binned() ? counts.bins.front().cumulative_count
                                                : static_cast<double>(counts.diameters.size())}};
   out["scaling_law"] = craterkit::cli::scaling_law_json(inputs);
+  if (draws) {
+    auto description = craterkit::cli::law_uncertainty_json(inputs, o.uncertainty, *draws);
+    description["reported"] = {
+        {"counting",
+         "median_yr, sigma1_yr, sigma2_yr: the Poisson likelihood of the counts with the fitted "
+         "(central) constants"},
+        {"scaling_law", "scaling_law_uncertainty.median_yr: percentiles of the median age over the draws"},
+        {"total", "total_uncertainty: the age density averaged over the draws (counting and law together)"}};
+    out["scaling_law_uncertainty"] = description;
+  }
   out["conventions"] = {
       {"body", body.name},
       {"region", ck::to_string(region)},
@@ -249,16 +271,31 @@ void run_age(const AgeOptions& o) {
       ck::to_string(region), inputs.law_source, setup.population.name);
   std::cout << "# Poisson-likelihood age (Michael et al. 2016): median and 1-/2-sigma bounds; classical "
                "cumulative fit\n";
-  std::cout << fmt::format("{:>12} {:>8} {:>12} {:>25} {:>25} {:>20}\n", "cohesion_Pa", "N_fit", "median_Myr",
-                           "1-sigma_Myr", "2-sigma_Myr", "cumulative_fit_Myr");
+  if (draws) {
+    std::cout << craterkit::cli::law_uncertainty_comment(inputs, o.uncertainty, *draws) << "\n";
+    std::cout
+        << "# counting: Poisson likelihood at the fitted constants; law: 15.87-84.13 % of the median age "
+           "over the draws; total: both (the age density averaged over the draws)\n";
+  }
+  const auto range = [](const nlohmann::json& pair) {
+    return fmt::format("[{:.4g}, {:.4g}]", pair[0].get<double>() / 1e6, pair[1].get<double>() / 1e6);
+  };
+  std::cout << fmt::format("{:>12} {:>8} {:>12} {:>25} {:>25}", "cohesion_Pa", "N_fit", "median_Myr",
+                           draws ? "counting_1-sigma_Myr" : "1-sigma_Myr",
+                           draws ? "counting_2-sigma_Myr" : "2-sigma_Myr");
+  if (draws) std::cout << fmt::format(" {:>25} {:>25}", "law_1-sigma_Myr", "total_1-sigma_Myr");
+  std::cout << fmt::format(" {:>20}\n", "cumulative_fit_Myr");
   for (const auto& a : out["ages"]) {
+    std::cout << fmt::format("{:>12.4g} {:>8.4g} {:>12.4g} {:>25} {:>25}", a["cohesion"].get<double>(),
+                             a["craters_in_range"].get<double>(), a["median_yr"].get<double>() / 1e6,
+                             range(a["sigma1_yr"]), range(a["sigma2_yr"]));
+    if (draws) {
+      const auto& law = a["scaling_law_uncertainty"]["median_yr"];
+      std::cout << fmt::format(" {:>25} {:>25}", range(nlohmann::json{law["p16"], law["p84"]}),
+                               range(a["total_uncertainty"]["sigma1_yr"]));
+    }
     std::cout << fmt::format(
-        "{:>12.4g} {:>8.4g} {:>12.4g} {:>25} {:>25} {:>20}{}\n", a["cohesion"].get<double>(),
-        a["craters_in_range"].get<double>(), a["median_yr"].get<double>() / 1e6,
-        fmt::format("[{:.4g}, {:.4g}]", a["sigma1_yr"][0].get<double>() / 1e6,
-                    a["sigma1_yr"][1].get<double>() / 1e6),
-        fmt::format("[{:.4g}, {:.4g}]", a["sigma2_yr"][0].get<double>() / 1e6,
-                    a["sigma2_yr"][1].get<double>() / 1e6),
+        " {:>20}{}\n",
         fmt::format("{:.4g} +- {:.2g}", a["cumulative_fit_age_yr"].get<double>() / 1e6,
                     a["cumulative_fit_sigma_yr"].get<double>() / 1e6),
         a["reaches_max_age"].get<bool>() ? "  (density reaches the maximum age: a lower bound)" : "");
@@ -274,6 +311,7 @@ void add_age_command(CLI::App& parent) {
       ->required();
   craterkit::cli::add_scaling_flags(*sub, o->scaling);
   craterkit::cli::add_production_flags(*sub, o->production);
+  craterkit::cli::add_law_uncertainty_flags(*sub, o->uncertainty);
   sub->add_option("--cohesion", o->cohesion,
                   "Cohesions Y of the scaling law, Pa (comma-separated); one age each")
       ->delimiter(',')
@@ -291,7 +329,10 @@ void add_age_command(CLI::App& parent) {
   sub->add_flag("--json", o->json, "Print JSON instead of a table");
   sub->footer(
       "Target density and gravity default to the body's; --impactor-density defaults to 2600 kg/m^3 and the "
-      "impact speed to the body's mean speed for --region. Ages in years in JSON, Myr in the table.");
+      "impact speed to the body's mean speed for --region. Ages in years in JSON, Myr in the table. With "
+      "--fit, the fit's covariance is carried into the age by --samples draws of the fitted constants: the "
+      "law and total columns (scaling_law_uncertainty, total_uncertainty in JSON) beside the counting "
+      "uncertainty.");
   sub->callback([o] { run_age(*o); });
 }
 

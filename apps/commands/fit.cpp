@@ -1,4 +1,6 @@
-// craterkit fit: Ceres fit of the point-source scaling law to a table of impacts and crater radii.
+// craterkit fit: Ceres fit of the point-source scaling law to a table of impacts and crater radii, one fit
+// per group of the table's grouping columns (scaling/grouped_fit.hpp; docs/scaling.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -15,6 +17,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/fit.hpp"
 #include "craterkit/scaling/fit_json.hpp"
+#include "craterkit/scaling/grouped_fit.hpp"
 #include "craterkit/scaling/radii_table.hpp"
 #include "fit_report.hpp"
 
@@ -27,6 +30,8 @@ struct FitCommandOptions {
   std::vector<std::string> fix;
   bool shared_strength = false;
   int starts = 12;
+  std::optional<std::string> group_by;
+  bool require_growth_ended = false;
   std::optional<std::string> out;
   bool json = false;
 };
@@ -47,39 +52,23 @@ std::pair<std::string, double> parse_fix(const std::string& text) {
   return {name, value};
 }
 
-std::string format_sigma(const scaling::FittedParameter& p) {
-  if (p.fixed) return "(fixed)";
-  if (!p.determined) return "(NOT DETERMINED by these data)";
-  return fmt::format("+- {:.3g}{}", p.sigma, p.at_bound ? "  (at a bound: sigma not meaningful)" : "");
-}
-
-}  // namespace
-
-// Text report of a fit (also used by `craterkit run`).
-void print_fit_report(const scaling::FitResult& fit, const std::string& source, std::size_t rows) {
-  fmt::print("Fit of the {} form to {} rows of {} ({})\n",
-             fit.form == scaling::Form::holsapple ? "Holsapple (K1, K2)" : "Housen & Holsapple 2011 (H1, H2)",
-             rows, source,
-             fit.weighted ? "residuals in ln R weighted by crater_radius_sigma"
-                          : "unweighted residuals in ln R; sigmas scaled by chi2/dof");
-  for (const auto& p : fit.parameters)
-    fmt::print("  {:<3} = {:<12.6g} {}\n", p.name, p.value, format_sigma(p));
-  fmt::print(
-      "  chi2 = {:.4g} for {} degrees of freedom (chi2/dof = {:.3g}); {} of {} starts reached the minimum\n",
-      fit.chi2, fit.dof, fit.chi2 / fit.dof, fit.starts_at_minimum, fit.starts);
-  if (!fit.correlation_names.empty()) {
-    fmt::print("  correlation:");
-    for (const auto& name : fit.correlation_names) fmt::print(" {:>7}", name);
-    fmt::print("\n");
-    for (Eigen::Index r = 0; r < fit.correlation.rows(); ++r) {
-      fmt::print("  {:>11}", fit.correlation_names[static_cast<std::size_t>(r)]);
-      for (Eigen::Index c = 0; c < fit.correlation.cols(); ++c) fmt::print(" {:7.3f}", fit.correlation(r, c));
-      fmt::print("\n");
+// --group-by: "none" (one fit over every row) or grouping column names, comma-separated.
+std::vector<std::string> parse_group_by(const std::string& text) {
+  if (text == "none") return {};
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string name = text.substr(start, comma - start);
+    if (name.empty() || name == "none") {
+      throw InputError("--group-by '" + text +
+                       "' is not allowed: use none, or grouping column names separated by commas");
     }
+    names.push_back(name);
+    start = comma + 1;
   }
+  return names;
 }
-
-namespace {
 
 void run_fit(const FitCommandOptions& options) {
   scaling::FitOptions fit_options;
@@ -94,14 +83,20 @@ void run_fit(const FitCommandOptions& options) {
   }
   fit_options.starts = options.starts;
   fit_options.shared_strength = options.shared_strength;
+  scaling::GroupedFitOptions grouped_options;
+  grouped_options.fit = fit_options;
+  if (options.group_by) grouped_options.group_by = parse_group_by(*options.group_by);
+  grouped_options.require_growth_ended = options.require_growth_ended;
   const auto table = scaling::read_radii_csv(options.table);
-  const auto fit = scaling::fit_scaling_law(table, fit_options);
-  const auto json = scaling::fit_to_json(fit);
+  const auto result = scaling::fit_groups(table, grouped_options);
+  // A table without grouping columns (or --group-by none) gives the single-fit JSON it always has.
+  const auto json = result.grouped() ? scaling::grouped_fit_to_json(result)
+                                     : scaling::fit_to_json(result.groups.front().fit.value());
   if (options.out) write_text_atomically(*options.out, json.dump(2) + "\n");
   if (options.json) {
     std::cout << json.dump(2) << "\n";
   } else {
-    print_fit_report(fit, options.table, table.rows.size());
+    print_grouped_fit_report(result, table);
     if (options.out) fmt::print("  written: {}\n", *options.out);
   }
 }
@@ -112,7 +107,8 @@ void add_fit_command(CLI::App& parent) {
       "fit", "Fit the point-source scaling law (Ceres) to a CSV table of impacts and crater radii");
   sub->add_option("RADII.csv", options->table,
                   "Table with columns impactor_radius, impactor_density, velocity, target_density, gravity, "
-                  "strength, crater_radius [, crater_radius_sigma] (SI)")
+                  "strength, crater_radius [, crater_radius_sigma] (SI); optionally run, growth_ended and "
+                  "grouping columns (e.g. friction, porosity, resolution), as `craterkit sweep` writes them")
       ->required();
   sub->add_option("--form", options->form, "Parameterisation: holsapple (K1, K2) or hh2011 (H1, H2)")
       ->capture_default_str();
@@ -123,6 +119,11 @@ void add_fit_command(CLI::App& parent) {
       ->trigger_on_parse();
   sub->add_flag("--shared-strength", options->shared_strength,
                 "Fit one strength Y shared by all rows instead of each row's strength column");
+  sub->add_option("--group-by", options->group_by,
+                  "Grouping columns to fit separately (comma-separated), or none for one fit over every row "
+                  "(default: every grouping column of the table)");
+  sub->add_flag("--require-growth-ended", options->require_growth_ended,
+                "Leave out the rows with growth_ended = false (by default they are fitted and flagged)");
   sub->add_option("--starts", options->starts, "Number of starting points (1..1000)")->capture_default_str();
   sub->add_option("--out", options->out, "Write the fit JSON to this file (atomically)");
   sub->add_flag("--json", options->json, "Print the fit JSON instead of text");

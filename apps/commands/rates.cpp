@@ -12,10 +12,12 @@
 
 #include "command_registry.hpp"
 #include "craterkit/chronology/body.hpp"
+#include "craterkit/chronology/law_propagation.hpp"
 #include "craterkit/chronology/population.hpp"
 #include "craterkit/chronology/production.hpp"
 #include "craterkit/chronology/scaled_production.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "law_uncertainty_flags.hpp"
 #include "production_flags.hpp"
 #include "scaling_flags.hpp"
 
@@ -33,6 +35,7 @@ struct RatesOptions {
   std::optional<std::string> population;
   craterkit::cli::ProductionFlags production;
   double impactor_density = 2600.0;
+  craterkit::cli::LawUncertaintyFlags uncertainty;
   bool json = false;
 };
 
@@ -65,11 +68,14 @@ void run_rates(const RatesOptions& o) {
   const double impactor_density = o.scaling.impactor_density.value_or(o.production.impactor_density);
   const double speed = ck::mean_speed(setup.speeds);
   const bool absolute = !o.q.has_value();
+  const auto draws = craterkit::cli::draw_laws(inputs, o.uncertainty);
 
   nlohmann::json rows = nlohmann::json::array();
   for (double D : o.diameters) {
     double first_rate = 0.0;
     for (std::size_t k = 0; k < o.cohesion.size(); ++k) {
+      craterkit::scaling::Target reference = target;
+      reference.strength = o.cohesion.front();
       target.strength = o.cohesion[k];
       const auto law = ck::scaled_impactor_radius(inputs.law, target, impactor_density);
       const double a = law(ck::apparent_radius_from_rim_diameter(D, setup.diameter), speed);
@@ -80,6 +86,14 @@ void run_rates(const RatesOptions& o) {
                             {"impactor_radius", a},
                             {"relative_rate", rate / first_rate}};
       row["production_rate_per_km2_per_yr"] = absolute ? nlohmann::json(rate * 1e6) : nlohmann::json(nullptr);
+      if (draws) {
+        const auto spread = ck::rate_spread(setup, draws->laws, target, reference, impactor_density, D);
+        row["scaling_law_uncertainty"] = {
+            {"impactor_radius", craterkit::cli::percentiles_json(spread.impactor_radius)},
+            {"relative_rate", craterkit::cli::percentiles_json(spread.relative_rate)},
+            {"production_rate_per_km2_per_yr",
+             absolute ? craterkit::cli::percentiles_json(spread.rate, 1e6) : nlohmann::json(nullptr)}};
+      }
       rows.push_back(row);
     }
   }
@@ -87,6 +101,9 @@ void run_rates(const RatesOptions& o) {
   if (o.json) {
     nlohmann::json out = {{"rows", rows}};
     out["scaling_law"] = craterkit::cli::scaling_law_json(inputs);
+    if (draws) {
+      out["scaling_law_uncertainty"] = craterkit::cli::law_uncertainty_json(inputs, o.uncertainty, *draws);
+    }
     out["conventions"] = {
         {"body", body.name},
         {"region", ck::to_string(region)},
@@ -109,17 +126,33 @@ void run_rates(const RatesOptions& o) {
   std::cout << fmt::format(
       "# rho = {} kg/m^3, g = {} m/s^2, delta = {} kg/m^3, U = {} m/s, D_rim/D_app = {}\n", target.density,
       target.gravity, impactor_density, speed, setup.diameter.rim_to_apparent);
-  std::cout << fmt::format("{:>16} {:>12} {:>18} {:>16} {:>22}\n", "crater_diam_m", "cohesion_Pa",
+  if (draws) std::cout << craterkit::cli::law_uncertainty_comment(inputs, o.uncertainty, *draws) << "\n";
+  std::cout << fmt::format("{:>16} {:>12} {:>18} {:>16} {:>22}", "crater_diam_m", "cohesion_Pa",
                            "impactor_radius_m", "relative_rate", "rate_per_km2_per_yr");
+  if (draws) {
+    std::cout << fmt::format(" {:>26} {:>26} {:>26}", "impactor_radius_law_range", "relative_rate_law_range",
+                             "rate_law_range");
+  }
+  std::cout << "\n";
   for (const auto& r : rows) {
     const std::string absolute_rate =
         r["production_rate_per_km2_per_yr"].is_null()
             ? std::string("-")
             : fmt::format("{:.4e}", r["production_rate_per_km2_per_yr"].get<double>());
-    std::cout << fmt::format("{:>16.4g} {:>12.4g} {:>18.4e} {:>16.4e} {:>22}\n",
+    std::cout << fmt::format("{:>16.4g} {:>12.4g} {:>18.4e} {:>16.4e} {:>22}",
                              r["crater_diameter"].get<double>(), r["cohesion"].get<double>(),
                              r["impactor_radius"].get<double>(), r["relative_rate"].get<double>(),
                              absolute_rate);
+    if (draws) {
+      const auto& u = r["scaling_law_uncertainty"];
+      const auto range = [](const nlohmann::json& p) {
+        return p.is_null() ? std::string("-")
+                           : fmt::format("[{:.4e}, {:.4e}]", p["p16"].get<double>(), p["p84"].get<double>());
+      };
+      std::cout << fmt::format(" {:>26} {:>26} {:>26}", range(u["impactor_radius"]),
+                               range(u["relative_rate"]), range(u["production_rate_per_km2_per_yr"]));
+    }
+    std::cout << "\n";
   }
 }
 
@@ -130,6 +163,7 @@ void add_rates_command(CLI::App& parent) {
   auto o = std::make_shared<RatesOptions>();
   craterkit::cli::add_scaling_flags(*sub, o->scaling);
   craterkit::cli::add_production_flags(*sub, o->production);
+  craterkit::cli::add_law_uncertainty_flags(*sub, o->uncertainty);
   sub->add_option("--cohesion", o->cohesion,
                   "Cohesions Y of the scaling law, Pa (comma-separated); rates are relative to the first")
       ->delimiter(',')
@@ -145,7 +179,8 @@ void add_rates_command(CLI::App& parent) {
   sub->footer(
       "Target density and gravity default to the body's; --impactor-density defaults to 2600 kg/m^3 and the "
       "impact speed to the body's mean speed for --region. The impactor radius is given at the (mean) "
-      "speed.");
+      "speed. With --fit, the fit's covariance is carried into every column by --samples draws of the "
+      "fitted constants (the *_law_range columns and scaling_law_uncertainty in JSON: 15.87-84.13 %).");
   sub->callback([o] { run_rates(*o); });
 }
 

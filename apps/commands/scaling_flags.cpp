@@ -28,6 +28,9 @@ void add_scaling_flags(CLI::App& app, ScalingFlags& flags) {
       "--params", flags.params,
       "Published constant set in data/scaling/ (e.g. jutzi2022_ryugu); explicit flags override it");
   app.add_option("--fit", flags.fit_file, "Scaling law from a fit JSON written by `craterkit fit --out`");
+  app.add_option("--group", flags.group,
+                 "With --fit of a grouped fit: the group whose law to use, KEY=VALUE[,KEY=VALUE] (e.g. "
+                 "friction=0.55,porosity=0.5; values as written in the table)");
   app.add_option("--K1", flags.K1, "Holsapple-form K1 (selects the Holsapple form)");
   app.add_option("--K2", flags.K2, "Holsapple-form K2 (selects the Holsapple form)");
   app.add_option("--H1", flags.H1, "Housen & Holsapple (2011) H1 (selects the HH2011 form)");
@@ -78,6 +81,10 @@ ScalingInputs resolve_scaling_flags(const ScalingFlags& flags) {
     throw InputError("--params " + *flags.params + " and --fit " + *flags.fit_file +
                      " cannot both be given: choose one base law");
   }
+  if (flags.group && !flags.fit_file) {
+    throw InputError("--group " + *flags.group +
+                     " is not allowed without --fit: it chooses a group of a grouped fit");
+  }
 
   ScalingInputs out;
   bool have_base = false;
@@ -89,10 +96,13 @@ ScalingInputs resolve_scaling_flags(const ScalingFlags& flags) {
     out.target_density = set.target_density;
     have_base = true;
   } else if (flags.fit_file) {
-    const auto fitted = scaling::load_fitted_law(*flags.fit_file);
+    const auto fitted = scaling::load_fitted_law(*flags.fit_file, flags.group);
     out.law = fitted.law;
     out.law_source = "fit " + *flags.fit_file;
+    if (!fitted.group.empty()) out.law_source += " group " + scaling::describe(fitted.group);
+    out.group = fitted.group;
     out.strength = fitted.strength;
+    out.covariance = fitted.covariance;
     have_base = true;
   } else {
     out.law_source = "flags";
@@ -116,6 +126,13 @@ ScalingInputs resolve_scaling_flags(const ScalingFlags& flags) {
   if (c2) out.law.coefficient_2 = *c2;
   if (flags.mu) out.law.mu = *flags.mu;
   if (flags.nu) out.law.nu = *flags.nu;
+  if (out.covariance.has_covariance() && (k_given || h_given || flags.mu || flags.nu)) {
+    out.covariance = scaling::LawCovariance{};
+    out.covariance_note =
+        "the fit's covariance is not propagated: a constant flag (--K1, --K2, --H1, --H2, --mu, "
+        "--nu) overrides the fitted law";
+  }
+  out.covariance.law = out.law;
   if (!have_base) {
     if (!k_given && !h_given) {
       throw InputError(
@@ -136,12 +153,18 @@ ScalingInputs resolve_scaling_flags(const ScalingFlags& flags) {
 }
 
 nlohmann::json scaling_law_json(const ScalingInputs& inputs) {
-  return {{"source", inputs.law_source},
-          {"form", scaling::to_string(inputs.law.form)},
-          {"coefficient_1", inputs.law.coefficient_1},
-          {"coefficient_2", inputs.law.coefficient_2},
-          {"mu", inputs.law.mu},
-          {"nu", inputs.law.nu}};
+  nlohmann::json out{{"source", inputs.law_source},
+                     {"form", scaling::to_string(inputs.law.form)},
+                     {"coefficient_1", inputs.law.coefficient_1},
+                     {"coefficient_2", inputs.law.coefficient_2},
+                     {"mu", inputs.law.mu},
+                     {"nu", inputs.law.nu}};
+  if (!inputs.group.empty()) {
+    nlohmann::json group = nlohmann::json::object();
+    for (const auto& [column, value] : inputs.group) group[column] = value;
+    out["group"] = group;
+  }
+  return out;
 }
 
 }  // namespace craterkit::cli

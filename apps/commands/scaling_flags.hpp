@@ -5,7 +5,8 @@
 //
 // Usage in a command file:
 //   auto flags = std::make_shared<craterkit::cli::ScalingFlags>();
-//   craterkit::cli::add_scaling_flags(*sub, *flags);        // --params --fit --K1 --K2 --H1 --H2 --mu --nu
+//   craterkit::cli::add_scaling_flags(*sub, *flags);        // --params --fit --group --K1 --K2 --H1 --H2
+//   --mu --nu
 //                                                          // --gravity --target-density
 //                                                          // --impactor-density --velocity
 //   craterkit::cli::add_strength_flag(*sub, *flags);        // --strength (optional; a command that sweeps
@@ -19,7 +20,10 @@
 // Resolution rules (documented in --help and docs/scaling.md):
 //  - The law starts from --params NAME (a set in data/scaling/) or --fit FIT.json (written by
 //    `craterkit fit --out`); giving both is an error. Without either, the coefficient pair, --mu and
-//    --nu are all required.
+//    --nu are all required. A grouped fit needs --group KEY=VALUE[,KEY=VALUE] to choose one group's law
+//    (the error lists the groups); --group is an error without --fit or with a single fit.
+//  - A fit's covariance comes with its law (ScalingInputs::covariance) unless a flag below overrides a
+//    constant: the covariance then no longer describes the law, and is dropped with a note.
 //  - --K1/--K2 select the Holsapple form, --H1/--H2 the Housen & Holsapple (2011) form; mixing the two
 //    pairs is an error. When the base law is in the other form it is first converted exactly
 //    (K1 = H1, K2 = (H1/H2)^(2/mu), at the base law's mu) and then the given flags override.
@@ -35,6 +39,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "craterkit/scaling/grouped_fit.hpp"
+#include "craterkit/scaling/law_uncertainty.hpp"
 #include "craterkit/scaling/point_source.hpp"
 
 namespace craterkit::cli {
@@ -42,6 +48,7 @@ namespace craterkit::cli {
 struct ScalingFlags {
   std::optional<std::string> params;    // --params NAME
   std::optional<std::string> fit_file;  // --fit FIT.json
+  std::optional<std::string> group;     // --group KEY=VALUE[,KEY=VALUE] (a group of a grouped fit)
   std::optional<double> K1, K2, H1, H2, mu, nu;
   std::optional<double> gravity;           // --gravity, m/s^2
   std::optional<double> target_density;    // --target-density, kg/m^3
@@ -50,7 +57,7 @@ struct ScalingFlags {
   std::optional<double> strength;          // --strength, Pa (only if add_strength_flag was called)
 };
 
-// Adds --params --fit --K1 --K2 --H1 --H2 --mu --nu --gravity --target-density --impactor-density
+// Adds --params --fit --group --K1 --K2 --H1 --H2 --mu --nu --gravity --target-density --impactor-density
 // --velocity to `app`, storing into `flags` (which must outlive parsing).
 void add_scaling_flags(CLI::App& app, ScalingFlags& flags);
 
@@ -59,7 +66,10 @@ void add_strength_flag(CLI::App& app, ScalingFlags& flags);
 
 struct ScalingInputs {
   scaling::ScalingLaw law;  // validated where given; coefficients a set does not give are NaN
-  std::string law_source;   // "set jutzi2022_ryugu", "fit FIT.json" or "flags"
+  std::string law_source;   // "set jutzi2022_ryugu", "fit FIT.json", "fit FIT.json group k=v, ..." or "flags"
+  scaling::GroupKey group;  // the group chosen from a grouped fit (empty otherwise)
+  scaling::LawCovariance covariance;  // the fit's, for the law as given (none for a set or flags)
+  std::string covariance_note;        // why a fit's covariance was dropped, if it was
   std::optional<double> strength;
   std::optional<double> target_density;
   std::optional<double> gravity;
@@ -70,7 +80,8 @@ struct ScalingInputs {
 // Applies the rules above; throws craterkit::InputError naming the flag, the value and what is allowed.
 ScalingInputs resolve_scaling_flags(const ScalingFlags& flags);
 
-// The law of `inputs` as reported in the JSON output of commands: source, form, coefficients, mu, nu.
+// The law of `inputs` as reported in the JSON output of commands: source, form, coefficients, mu, nu (and
+// the group, when one was chosen from a grouped fit).
 nlohmann::json scaling_law_json(const ScalingInputs& inputs);
 
 // The value, or InputError "<flag> is required ..." when it is empty.

@@ -237,7 +237,7 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
   out.sigma2_high = density_quantile(out.age_grid, out.density, 0.9772499);
 
   // Classical cumulative fit: least squares of ln N(>=D) over the points in range.
-  if (!cumulative_points.empty()) {
+  if (options.cumulative_fit && !cumulative_points.empty()) {
     std::vector<ProductionPoint> pts;
     for (const auto& [d, nobs] : cumulative_points) {
       (void)nobs;

@@ -524,6 +524,18 @@ std::optional<double> FitResult::strength() const {
   return parameters.at(kY).value;
 }
 
+int free_parameter_count(const FitOptions& options) {
+  FitSetup setup;
+  setup.names = parameter_names(options.form);
+  apply_fixed(options, setup);
+  int count = 0;
+  for (int i = 0; i < kParameterCount; ++i) {
+    const bool in_model = i != kY || options.shared_strength;
+    count += in_model && !setup.fixed[i] ? 1 : 0;
+  }
+  return count;
+}
+
 FitResult fit_scaling_law(const RadiiTable& table, const FitOptions& options) {
   const FitSetup setup = prepare_fit(table, options);
   const ceres::Solver::Options solver = solver_options();

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Command-line contract of `craterkit scale`, `fit` and `run` (scripts depend on it): exit status 0 on
 # success and 2 on bad arguments with a message naming the flag, JSON keys present, the inverse round
-# trip, atomic output and nothing written on an error. Usage: test_cli.sh /path/to/craterkit
+# trip, atomic output and nothing written on an error; fits per group of a sweep-style table.
+# Usage: test_cli.sh /path/to/craterkit
 set -u
 CK="$1"
 PY=/usr/bin/python3
@@ -116,6 +117,59 @@ expect_status 2 "'zeta'" fit "$TABLE" --fix zeta=1 --out "$WORK/never.json"
 [ -e "$WORK/never.json" ] && fail "fit wrote its output despite an error"
 expect_status 2 "" fit
 expect_status 0 "" fit --help
+
+# fit on a sweep-style table: one fit per group, the grouped JSON, --group-by, --require-growth-ended
+GROUPED="$CRATERKIT_DATA_DIR/examples/radii_groups_example.csv"
+expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4 --out "$WORK/groups.json" --json
+$PY - "$WORK/groups.json" "$WORK/out" <<'PYEOF' || fail "grouped fit JSON is not one fit per friction"
+import json, sys
+written, printed = (json.load(open(p)) for p in sys.argv[1:3])
+assert written == printed
+assert written["group_by"] == ["friction", "porosity", "resolution"], written["group_by"]
+groups = written["groups"]
+assert [g["group"]["friction"] for g in groups] == ["0.55", "0.8"]
+truth = {"0.55": {"H1": 0.60, "H2": 0.25, "mu": 0.44}, "0.8": {"H1": 0.75, "H2": 0.30, "mu": 0.40}}
+flagged = 0
+for g in groups:
+    assert g["rows"] == 30 and g["cohesions"] == 5
+    for name, value in truth[g["group"]["friction"]].items():
+        p = g["fit"]["parameters"][name]
+        assert abs(p["value"] - value) < 2 * p["sigma"], (g["group"], name, p, value)
+    assert g["fit"]["parameters"]["nu"]["fixed"]
+    assert len(g["regimes"]) == 30 and sum(g["regime_counts"].values()) == 30
+    assert all(r["regime"] in ("gravity", "transitional", "strength") and "run" in r for r in g["regimes"])
+    flagged += len(g["growth_not_ended"])
+assert flagged == 3 and written["excluded_rows"]["lines"] == []
+PYEOF
+expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4
+grep -q "== friction=0.55, porosity=0.5, resolution=18" "$WORK/out" || fail "grouped text report lacks the group heading"
+[ "$(grep -c "regimes (strength/gravity" "$WORK/out")" -eq 2 ] || fail "grouped text report lacks regime counts"
+grep -q "growth_ended = false" "$WORK/out" || fail "grouped text report does not flag rows whose growth had not ended"
+expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4 --group-by none --json
+$PY - "$WORK/out" <<'PYEOF' || fail "--group-by none is not one single fit"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert "groups" not in d and "parameters" in d and len(d["residuals"]) == 60
+PYEOF
+expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4 --group-by friction --require-growth-ended --json
+$PY - "$WORK/out" <<'PYEOF' || fail "--group-by friction --require-growth-ended"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["group_by"] == ["friction"] and d["pooled"] == {"porosity": ["0.5"], "resolution": ["18"]}
+assert d["excluded_rows"] == {"require_growth_ended": True, "lines": [27, 32, 33]}, d["excluded_rows"]
+assert sum(g["rows"] for g in d["groups"]) == 57
+assert all(not g["growth_not_ended"] for g in d["groups"])
+PYEOF
+expect_status 2 "'frictoin'" fit "$GROUPED" --group-by frictoin --out "$WORK/never.json"
+expect_status 2 "'growth_ended'" fit "$TABLE" --require-growth-ended --out "$WORK/never.json"
+sed 's/,strength,/,strenght,/' "$GROUPED" >"$WORK/misspelt.csv"
+expect_status 2 "did you mean 'strength'" fit "$WORK/misspelt.csv" --out "$WORK/never.json"
+[ -e "$WORK/never.json" ] && fail "fit wrote its output despite an error"
+# a group's law feeds scale; without --group the error lists the groups
+expect_status 0 "" scale --fit "$WORK/groups.json" --group friction=0.8 --impactor-radius 0.1 "${IMPACT[@]}" --json
+expect_status 2 "friction=0.8,porosity=0.5,resolution=18" scale --fit "$WORK/groups.json" --impactor-radius 0.1 \
+  "${IMPACT[@]}"
+expect_status 2 "--group" scale --fit "$WORK/fit.json" --group friction=0.8 --impactor-radius 0.1 "${IMPACT[@]}"
 
 # run: text, JSON and --out
 expect_status 0 "" run --out "$WORK/run"

@@ -1,9 +1,10 @@
-// The impacts-and-radii CSV reader: good tables and every malformed case, each reported with its
-// line and column.
+// The impacts-and-radii CSV reader: good tables, sweep tables with information and grouping columns, and
+// every malformed case (misspelt columns included), each reported with its line and column.
 #include <gtest/gtest.h>
 
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/radii_table.hpp"
@@ -85,8 +86,7 @@ TEST(RadiiTable, EveryMalformedCaseNamesItsPlace) {
       "impactor_radius,impactor_density,velocity,target_density,gravity,crater_radius\n"
       "0.05,2700,2000,1300,1.4e-4,7.2\n",
       "t.csv:1", "'strength'");
-  // an unknown or repeated column
-  expect_error("colour," + kHeader, "t.csv:1", "'colour'");
+  // a repeated column (an unknown one is a grouping column: see the sweep tables below)
   expect_error("strength," + kHeader, "t.csv:1", "'strength' appears twice");
   // a non-number, NaN, infinity, an empty cell
   expect_error(kHeader + kRow + "0.05,2700,fast,1300,1.4e-4,0.05,7.2\n", "t.csv:3",
@@ -118,4 +118,71 @@ TEST(RadiiTable, EveryMalformedCaseNamesItsPlace) {
 
 TEST(RadiiTable, MissingFileIsReported) {
   EXPECT_THROW(cs::read_radii_csv("/nonexistent/radii.csv"), craterkit::InputError);
+}
+
+// A table as `craterkit sweep` writes it: the fit's columns, grouping columns (varied axes, some with
+// dotted names), then the information columns run and growth_ended.
+TEST(RadiiTable, SweepTableKeepsInformationAndGroupingColumnsAsWritten) {
+  const std::string text =
+      "# study cohesion-size, craterkit 0.1.0 (commit abc), command craterkit sweep study.toml\n"
+      "impactor_radius,impactor_density,velocity,target_density,gravity,strength,crater_radius,"
+      "crater_radius_sigma,friction,porosity,resolution,impact.grading,A_low,run,growth_ended\n"
+      "0.0561297,2700,2000,1300,0.00014,0.05,7.21,0.25,0.55,0.5,18,none,1e-3,projectile_mass-2_cohesion-0.05,"
+      "true\n"
+      "0.0561297,2700,2000,1300,0.00014,0.5,4.8,0.2,0.50,0.5,18,linear,1e-3,projectile_mass-2_cohesion-0.5,"
+      "false\n";
+  const auto table = parse(text);
+  ASSERT_EQ(table.rows.size(), 2u);
+  EXPECT_EQ(table.group_columns,
+            (std::vector<std::string>{"friction", "porosity", "resolution", "impact.grading", "A_low"}));
+  EXPECT_TRUE(table.has_sigma());
+  EXPECT_TRUE(table.has_run());
+  EXPECT_TRUE(table.has_growth_ended());
+  EXPECT_EQ(table.rows[0].group_values, (std::vector<std::string>{"0.55", "0.5", "18", "none", "1e-3"}));
+  EXPECT_EQ(table.rows[1].group_values[0], "0.50");  // as written, not as a number
+  EXPECT_EQ(table.rows[0].run.value(), "projectile_mass-2_cohesion-0.05");
+  EXPECT_TRUE(table.rows[0].growth_ended.value());
+  EXPECT_FALSE(table.rows[1].growth_ended.value());
+  EXPECT_EQ(table.rows[1].line, 4);
+  EXPECT_DOUBLE_EQ(table.rows[1].target.strength, 0.5);
+  // Written and read again, every column survives.
+  const auto again = parse(cs::format_radii_csv(table));
+  EXPECT_EQ(again.group_columns, table.group_columns);
+  EXPECT_EQ(again.rows[1].group_values, table.rows[1].group_values);
+  EXPECT_EQ(again.rows[0].run, table.rows[0].run);
+  EXPECT_EQ(again.rows[1].growth_ended, table.rows[1].growth_ended);
+  // A table without them has none.
+  const auto plain = parse(kHeader + kRow);
+  EXPECT_TRUE(plain.group_columns.empty());
+  EXPECT_FALSE(plain.has_run());
+  EXPECT_FALSE(plain.has_growth_ended());
+}
+
+TEST(RadiiTable, MisspeltColumnsFailNamingThem) {
+  // A misspelt required column: the missing column is named, with the header name that is close to it.
+  expect_error(
+      "impactor_radius,impactor_density,velocity,target_density,gravity,strenght,crater_radius\n" + kRow,
+      "lacks the required column 'strength'", "did you mean 'strength' for header column 6 'strenght'");
+  expect_error(
+      "impactor_radius,impactor_density,velocty,target_density,gravity,strength,crater_radius\n" + kRow,
+      "'velocity'", "'velocty'");
+  // A misspelt optional or information column is refused rather than taken as a grouping column.
+  expect_error(
+      "impactor_radius,impactor_density,velocity,target_density,gravity,strength,crater_radius,"
+      "crater_radius_sigm\n0.05,2700,2000,1300,1.4e-4,0.05,7.2,0.3\n",
+      "'crater_radius_sigm'", "did you mean 'crater_radius_sigma'");
+  expect_error(
+      "impactor_radius,impactor_density,velocity,target_density,gravity,strength,crater_radius,"
+      "growth_endd\n0.05,2700,2000,1300,1.4e-4,0.05,7.2,true\n",
+      "'growth_endd'", "did you mean 'growth_ended'");
+  // Case counts as a misspelling too.
+  expect_error("Strength," + kHeader, "'Strength'", "did you mean 'strength'");
+  // Short names far from every known name (but within 2 edits of `run`) are grouping columns.
+  const auto table = parse("rho,mu," + kHeader + "a,b," + kRow);
+  EXPECT_EQ(table.group_columns, (std::vector<std::string>{"rho", "mu"}));
+  // A growth_ended that is not true/false, and a column without a name.
+  expect_error(
+      kHeader.substr(0, kHeader.size() - 1) + ",growth_ended\n" + kRow.substr(0, kRow.size() - 1) + ",yes\n",
+      "t.csv:2: column 'growth_ended': 'yes'", "true or false");
+  expect_error(kHeader.substr(0, kHeader.size() - 1) + ",,friction\n", "t.csv:1", "column 8 has no name");
 }

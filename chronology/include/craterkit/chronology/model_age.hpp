@@ -27,6 +27,9 @@ struct AgeFitOptions {
   EquilibriumCap cap;
   double max_age = 4.567e9;  // years, upper end of the uniform prior (age of the Solar System)
   std::size_t grid_points = 2001;
+  // Also the classical cumulative fit. It needs r(D) at every counted crater; the draws of the scaling
+  // law's constants (law_propagation.hpp) use only the likelihood and leave it out.
+  bool cumulative_fit = true;
 };
 
 struct AgeEstimate {

@@ -85,4 +85,9 @@ struct FitResult {
 // or shared_strength with a fixed Y that is not > 0 and finite.
 FitResult fit_scaling_law(const RadiiTable& table, const FitOptions& options);
 
+// The number of parameters fit_scaling_law would fit (c1, c2, mu, nu and a shared Y, less the fixed ones),
+// after the same checks of the options (InputError for an unknown, repeated or out-of-range fixed name).
+// A table needs more rows than this.
+int free_parameter_count(const FitOptions& options);
+
 }  // namespace craterkit::scaling
