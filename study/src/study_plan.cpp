@@ -136,6 +136,223 @@ std::filesystem::path run_directory(const std::filesystem::path& out, const std:
   return out / "runs" / name;
 }
 
+namespace {
+
+// What planning one run needs of the study as a whole.
+struct PlanContext {
+  const StudyPlan& plan;
+  const scaling::ScalingLaw& law;
+  const TemporaryFolder& scratch;
+  std::map<std::string, sph::Material>& loaded_materials;  // unchanged materials, by file
+};
+
+// One run being planned: where its messages point, and what its axes leave for the later steps.
+struct RunDraft {
+  PlannedRun run;
+  std::string where;  // "study.toml: grid run cohesion-0.1", "study.toml: runs[2] (cohesion-0.1)"
+  TomlDocument config;
+  TomlDocument target;  // the target material as the run has it (changed or not)
+  bool target_changed = false;
+  std::optional<double> spacings;  // the resolution axis
+  bool t_transition_axis = false;
+  std::map<std::string, std::string> config_cells;  // table cells of the dotted configuration columns
+};
+
+std::string value_where(const StudyPlan& plan, const RunSpec& spec, const AxisValue& v) {
+  return plan.study.file.string() + ": " + spec.origin + "." + v.key;
+}
+
+// The configuration axes of a run: its dotted keys first, so that the named axes see them (projectile_radius
+// the projectile density), then the named ones.
+void apply_config_axes(const StudyPlan& plan, const RunSpec& spec, RunDraft& d) {
+  const impact::ImpactSetup defaults{};
+  for (const auto& v : spec.values) {
+    if (v.kind != AxisKind::config_key) continue;
+    try {
+      d.config.set(v.key, v.literal);
+    } catch (const InputError& e) {
+      throw InputError(value_where(plan, spec, v) + ": " + e.what());
+    }
+  }
+  // The table cells of the configuration keys, as the study gives them (before paths are made absolute).
+  for (const auto& column : plan.extra_columns) {
+    if (column.find('.') != std::string::npos && !column.starts_with("target.")) {
+      d.config_cells[column] = cell_of(d.config, column);
+    }
+  }
+  for (const auto& v : spec.values) {
+    try {
+      switch (v.kind) {
+        case AxisKind::projectile_mass:
+          d.config.set_number("impact.projectile_mass", *v.number);
+          break;
+        case AxisKind::projectile_radius: {
+          const double density =
+              d.config.number("impact.projectile_density").value_or(defaults.projectile_density);
+          d.config.set_number("impact.projectile_mass", projectile_mass(*v.number, density));
+          break;
+        }
+        case AxisKind::impact_speed:
+          d.config.set_number("impact.impact_speed", *v.number);
+          break;
+        case AxisKind::A_low:
+          d.config.set_number("impact.A_low", *v.number);
+          break;
+        case AxisKind::t_transition:
+          d.config.set_number("impact.t_transition", *v.number);
+          d.t_transition_axis = true;
+          break;
+        case AxisKind::resolution:
+          d.spacings = *v.number;
+          break;
+        default:
+          break;
+      }
+    } catch (const InputError& e) {
+      throw InputError(value_where(plan, spec, v) + ": " + e.what());
+    }
+  }
+  make_material_absolute(d.config, "impact.target_material", plan.study.file.parent_path());
+  make_material_absolute(d.config, "impact.projectile_material", plan.study.file.parent_path());
+}
+
+// The target material: the run's (base's or axis's), copied and changed when a material axis is given, then
+// written next to the run's configuration, which points at it; loaded as the engine loads it to check it.
+void plan_target(const PlanContext& ctx, const RunSpec& spec, RunDraft& d) {
+  PlannedRun& run = d.run;
+  run.target_material =
+      d.config.text("impact.target_material").value_or(impact::ImpactSetup{}.target_material);
+  std::filesystem::path file;
+  try {
+    file = resolve_data_set(run.target_material, "materials", "material");
+  } catch (const InputError& e) {
+    throw InputError(d.where + ": impact.target_material: " + e.what());
+  }
+  d.target = TomlDocument::parse_file(file);
+  d.target_changed =
+      apply_material_axes(d.target, spec.values, ctx.plan.study.file.string() + ": " + spec.origin);
+  sph::Material material;
+  if (d.target_changed) {
+    run.target_text = "# Target material of run " + run.name +
+                      " (craterkit sweep, docs/sweep.md): " + file.filename().string() +
+                      " with the run's material axes.\n" + d.target.dump();
+    const auto check_dir = ctx.scratch.path() / std::to_string(run.index);
+    std::filesystem::create_directories(check_dir);
+    write_text_atomically(check_dir / "target.toml", *run.target_text);
+    try {
+      material = sph::load_material((check_dir / "target.toml").string());
+    } catch (const InputError& e) {
+      throw InputError(d.where + ": the target material with this run's axis values (" +
+                       describe_values(spec.values) + ") is not valid: " + e.what());
+    }
+    run.target_material = (run_directory(ctx.plan.out, run.name) / "target.toml").string();
+    d.config.set_text("impact.target_material", run.target_material);
+  } else {
+    const std::string key = file.string();
+    if (!ctx.loaded_materials.contains(key)) {
+      try {
+        ctx.loaded_materials.emplace(key, sph::load_material(key));
+      } catch (const InputError& e) {
+        throw InputError(d.where + ": impact.target_material: " + e.what());
+      }
+    }
+    material = ctx.loaded_materials.at(key);
+  }
+  const TargetProperties props = target_properties(material, d.where);
+  run.cohesion = props.cohesion;
+  run.friction = props.friction;
+  run.initial_distention = props.initial_distention;
+  run.porosity = 1.0 - 1.0 / props.initial_distention;
+  run.bulk_density = props.reference_density / props.initial_distention;
+}
+
+// The law's prediction for the run, and the sizing rule applied to its configuration when it is on.
+void apply_sizing(const PlanContext& ctx, RunDraft& d) {
+  const impact::ImpactSetup defaults{};
+  const auto& study = ctx.plan.study;
+  PlannedRun& run = d.run;
+  SizingInput input;
+  try {
+    input.projectile_mass = d.config.number("impact.projectile_mass").value_or(defaults.projectile_mass);
+    input.projectile_density =
+        d.config.number("impact.projectile_density").value_or(defaults.projectile_density);
+    input.impact_speed = d.config.number("impact.impact_speed").value_or(defaults.impact_speed);
+    input.impact_angle = d.config.number("impact.impact_angle").value_or(defaults.impact_angle);
+    const auto g = d.config.numbers("run.gravity").value_or(std::vector<double>{0.0, 0.0, 0.0});
+    double g2 = 0.0;
+    for (const double c : g) g2 += c * c;
+    input.gravity = std::sqrt(g2);
+  } catch (const InputError& e) {
+    throw InputError(d.where + ": " + e.what());
+  }
+  input.target_density = run.bulk_density;
+  input.strength = run.cohesion;
+  run.sizing = size_run(study.sizing, ctx.law, input, d.spacings);
+  if (!study.sizing.enabled) return;
+  const auto& s = run.sizing;
+  if (!(std::isfinite(s.predicted_crater_radius) && s.predicted_crater_radius > 0.0 &&
+        std::isfinite(s.end_time) && s.end_time > 0.0)) {
+    throw InputError(d.where +
+                     ": the sizing rule needs a finite predicted crater radius and end time; the law " +
+                     study.law + " gives R_pred = " + full(s.predicted_crater_radius) + " m and end time " +
+                     full(s.end_time) + " s (gravity " + full(input.gravity) + " m/s^2, cohesion " +
+                     full(input.strength) + " Pa): set [sizing] enabled = false and size the base by hand");
+  }
+  if (!(s.inner_spacing < s.particle_spacing)) {
+    throw InputError(d.where + ": the sizing rule gives a core spacing dx0 = " + full(s.inner_spacing) +
+                     " m not below the outer spacing dx_max = R_pred / n = " + full(s.particle_spacing) +
+                     " m: lower sizing.core_spacing_over_projectile_radius or raise the resolution");
+  }
+  d.config.set_number("impact.domain_radius", s.domain_radius);
+  d.config.set_number("impact.particle_spacing", s.particle_spacing);
+  d.config.set_number("impact.inner_spacing", s.inner_spacing);
+  d.config.set_number("run.end_time", s.end_time);
+  if (!d.t_transition_axis) d.config.erase("impact.t_transition");
+  run.sized = true;
+}
+
+// The inputs of the run's radii.csv row known before it runs, from its parsed configuration.
+void fill_table_inputs(const StudyPlan& plan, const impact::ImpactConfig& config, RunDraft& d) {
+  PlannedRun& run = d.run;
+  const auto& s = config.impact;
+  run.impactor_radius = projectile_radius(s.projectile_mass, s.projectile_density);
+  run.impactor_density = s.projectile_density;
+  run.velocity = s.impact_angle == 0.0 ? s.impact_speed
+                                       : s.impact_speed * std::cos(s.impact_angle * std::numbers::pi / 180.0);
+  const auto& g = config.simulation.solver.gravity;
+  run.gravity = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+  run.resolution =
+      run.sized ? run.sizing.spacings_across_radius : run.sizing.predicted_crater_radius / s.particle_spacing;
+  for (const auto& column : plan.extra_columns) {
+    if (column == "A_low") {
+      run.extra_cells.push_back(full(s.low_sound_speed_modulus));
+    } else if (column == "t_transition") {
+      run.extra_cells.push_back(s.transition_time > 0.0 ? full(s.transition_time) : "");
+    } else if (column.starts_with("target.")) {
+      run.extra_cells.push_back(cell_of(d.target, column.substr(7)));
+    } else {
+      run.extra_cells.push_back(d.config_cells.at(column));
+    }
+  }
+}
+
+// The columns of radii.csv beyond the fixed ones: A_low, t_transition and the dotted keys that any run
+// varies.
+std::vector<std::string> extra_columns(const std::vector<RunSpec>& specs) {
+  std::vector<std::string> columns;
+  for (const auto& spec : specs) {
+    for (const auto& v : spec.values) {
+      const bool column = v.kind == AxisKind::A_low || v.kind == AxisKind::t_transition ||
+                          v.kind == AxisKind::config_key || v.kind == AxisKind::material_key;
+      if (column && std::find(columns.begin(), columns.end(), v.key) == columns.end())
+        columns.push_back(v.key);
+    }
+  }
+  return columns;
+}
+
+}  // namespace
+
 StudyPlan plan_study(const Study& study, const std::filesystem::path& out) {
   StudyPlan plan;
   plan.study = study;
@@ -168,231 +385,63 @@ StudyPlan plan_study(const Study& study, const std::filesystem::path& out) {
   }
 
   const std::vector<RunSpec> specs = expand_runs(study);
-  for (const auto& spec : specs) {
-    for (const auto& v : spec.values) {
-      const bool column = v.kind == AxisKind::A_low || v.kind == AxisKind::t_transition ||
-                          v.kind == AxisKind::config_key || v.kind == AxisKind::material_key;
-      if (column &&
-          std::find(plan.extra_columns.begin(), plan.extra_columns.end(), v.key) == plan.extra_columns.end())
-        plan.extra_columns.push_back(v.key);
-    }
-  }
-
+  plan.extra_columns = extra_columns(specs);
   TemporaryFolder scratch;
-  std::map<std::string, sph::Material> shipped_materials;
-  std::map<std::string, std::string> fingerprints;  // configuration without its name -> run
+  std::map<std::string, sph::Material> loaded_materials;
+  const PlanContext ctx{plan, law, scratch, loaded_materials};
+  std::map<std::string, std::string> fingerprints;  // configuration and target without the name -> run
   std::map<std::string, std::string> names;         // name -> run
-  const impact::ImpactSetup defaults{};
 
   for (std::size_t k = 0; k < specs.size(); ++k) {
     const RunSpec& spec = specs[k];
-    PlannedRun run;
+    RunDraft d{PlannedRun{}, "", base, base, false, std::nullopt, false, {}};
+    PlannedRun& run = d.run;
     run.index = k;
     run.origin = spec.origin;
     run.values = spec.values;
     run.name = run_name(spec.values);
-    const std::string run_where =
-        source + ": " +
-        (spec.origin == "grid" ? "grid run " + run.name : spec.origin + " (" + run.name + ")");
-    const auto value_where = [&](const AxisValue& v) { return source + ": " + spec.origin + "." + v.key; };
+    const std::string label =
+        spec.origin == "grid" ? "grid run " + run.name : spec.origin + " (" + run.name + ")";
+    d.where = source + ": " + label;
     if (const auto other = names.find(run.name); other != names.end()) {
-      throw InputError(run_where + ": its name is that of " + other->second +
+      throw InputError(d.where + ": its name is that of " + other->second +
                        ": two runs with the same axis values (duplicate runs)");
     }
-    const auto dir = run_directory(plan.out, run.name);
 
-    TomlDocument doc = base;
-    doc.set_text("problem.name", run.name);
-    std::optional<double> spacings;
-    bool t_transition_axis = false;
-    // Configuration keys first, so that the named axes see them (projectile_radius the projectile density).
-    for (const auto& v : spec.values) {
-      if (v.kind != AxisKind::config_key) continue;
-      try {
-        doc.set(v.key, v.literal);
-      } catch (const InputError& e) {
-        throw InputError(value_where(v) + ": " + e.what());
-      }
-    }
-    // The table cells of the configuration keys, as the study gives them (before paths are made absolute).
-    std::map<std::string, std::string> config_cells;
-    for (const auto& column : plan.extra_columns) {
-      if (column.find('.') != std::string::npos && !column.starts_with("target.")) {
-        config_cells[column] = cell_of(doc, column);
-      }
-    }
-    for (const auto& v : spec.values) {
-      try {
-        switch (v.kind) {
-          case AxisKind::projectile_mass:
-            doc.set_number("impact.projectile_mass", *v.number);
-            break;
-          case AxisKind::projectile_radius: {
-            const double density =
-                doc.number("impact.projectile_density").value_or(defaults.projectile_density);
-            doc.set_number("impact.projectile_mass", projectile_mass(*v.number, density));
-            break;
-          }
-          case AxisKind::impact_speed:
-            doc.set_number("impact.impact_speed", *v.number);
-            break;
-          case AxisKind::A_low:
-            doc.set_number("impact.A_low", *v.number);
-            break;
-          case AxisKind::t_transition:
-            doc.set_number("impact.t_transition", *v.number);
-            t_transition_axis = true;
-            break;
-          case AxisKind::resolution:
-            spacings = *v.number;
-            break;
-          default:
-            break;
-        }
-      } catch (const InputError& e) {
-        throw InputError(value_where(v) + ": " + e.what());
-      }
-    }
-    make_material_absolute(doc, "impact.target_material", study.file.parent_path());
-    make_material_absolute(doc, "impact.projectile_material", study.file.parent_path());
-
-    // The target material: the base's (or an axis's), copied and changed when a material axis is given.
-    run.target_material = doc.text("impact.target_material").value_or(defaults.target_material);
-    std::filesystem::path material_file;
-    try {
-      material_file = resolve_data_set(run.target_material, "materials", "material");
-    } catch (const InputError& e) {
-      throw InputError(run_where + ": impact.target_material: " + e.what());
-    }
-    TomlDocument material = TomlDocument::parse_file(material_file);
-    const bool changed = apply_material_axes(material, spec.values, source + ": " + spec.origin);
-    sph::Material target;
-    if (changed) {
-      run.target_text = "# Target material of run " + run.name +
-                        " (craterkit sweep, docs/sweep.md): " + material_file.filename().string() +
-                        " with the run's material axes.\n" + material.dump();
-      const auto check_dir = scratch.path() / std::to_string(k);
-      std::filesystem::create_directories(check_dir);
-      write_text_atomically(check_dir / "target.toml", *run.target_text);
-      try {
-        target = sph::load_material((check_dir / "target.toml").string());
-      } catch (const InputError& e) {
-        throw InputError(run_where + ": the target material with this run's axis values (" +
-                         describe_values(spec.values) + ") is not valid: " + e.what());
-      }
-      run.target_material = (dir / "target.toml").string();
-      doc.set_text("impact.target_material", run.target_material);
-    } else {
-      const std::string key = material_file.string();
-      if (!shipped_materials.contains(key)) {
-        try {
-          shipped_materials.emplace(key, sph::load_material(key));
-        } catch (const InputError& e) {
-          throw InputError(run_where + ": impact.target_material: " + e.what());
-        }
-      }
-      target = shipped_materials.at(key);
-    }
-    const TargetProperties props = target_properties(target, run_where);
-    run.cohesion = props.cohesion;
-    run.friction = props.friction;
-    run.initial_distention = props.initial_distention;
-    run.porosity = 1.0 - 1.0 / props.initial_distention;
-    run.bulk_density = props.reference_density / props.initial_distention;
-
-    // The prediction, and the sizing rule.
-    SizingInput input;
-    try {
-      input.projectile_mass = doc.number("impact.projectile_mass").value_or(defaults.projectile_mass);
-      input.projectile_density =
-          doc.number("impact.projectile_density").value_or(defaults.projectile_density);
-      input.impact_speed = doc.number("impact.impact_speed").value_or(defaults.impact_speed);
-      input.impact_angle = doc.number("impact.impact_angle").value_or(defaults.impact_angle);
-      const auto g = doc.numbers("run.gravity").value_or(std::vector<double>{0.0, 0.0, 0.0});
-      double g2 = 0.0;
-      for (const double c : g) g2 += c * c;
-      input.gravity = std::sqrt(g2);
-    } catch (const InputError& e) {
-      throw InputError(run_where + ": " + e.what());
-    }
-    input.target_density = run.bulk_density;
-    input.strength = run.cohesion;
-    run.sizing = size_run(study.sizing, law, input, spacings);
-    if (study.sizing.enabled) {
-      const auto& s = run.sizing;
-      if (!(std::isfinite(s.predicted_crater_radius) && s.predicted_crater_radius > 0.0 &&
-            std::isfinite(s.end_time) && s.end_time > 0.0)) {
-        throw InputError(
-            run_where + ": the sizing rule needs a finite predicted crater radius and end time; the law " +
-            study.law + " gives R_pred = " + full(s.predicted_crater_radius) + " m and end time " +
-            full(s.end_time) + " s (gravity " + full(input.gravity) + " m/s^2, cohesion " +
-            full(input.strength) + " Pa): set [sizing] enabled = false and size the base by hand");
-      }
-      if (!(s.inner_spacing < s.particle_spacing)) {
-        throw InputError(run_where + ": the sizing rule gives a core spacing dx0 = " + full(s.inner_spacing) +
-                         " m not below the outer spacing dx_max = R_pred / n = " + full(s.particle_spacing) +
-                         " m: lower sizing.core_spacing_over_projectile_radius or raise the resolution");
-      }
-      doc.set_number("impact.domain_radius", s.domain_radius);
-      doc.set_number("impact.particle_spacing", s.particle_spacing);
-      doc.set_number("impact.inner_spacing", s.inner_spacing);
-      doc.set_number("run.end_time", s.end_time);
-      if (!t_transition_axis) doc.erase("impact.t_transition");
-      run.sized = true;
-    }
+    d.config.set_text("problem.name", run.name);
+    apply_config_axes(plan, spec, d);
+    plan_target(ctx, spec, d);
+    apply_sizing(ctx, d);
 
     run.config_text = "# Run " + run.name +
                       " of a craterkit sweep study (docs/sweep.md): the study's base configuration with this "
                       "run's axis values"
                       "\n# and sizing, as run.json records; written by `craterkit sweep`, whose study file "
                       "is the source.\n" +
-                      doc.dump();
+                      d.config.dump();
     impact::ImpactConfig config;
     try {
-      config = impact::parse_impact_config(run.config_text, (dir / "config.toml").string());
+      config = impact::parse_impact_config(run.config_text,
+                                           (run_directory(plan.out, run.name) / "config.toml").string());
     } catch (const InputError& e) {
-      throw InputError(run_where + ": the configuration with this run's axis values (" +
+      throw InputError(d.where + ": the configuration with this run's axis values (" +
                        describe_values(spec.values) + ") is not valid: " + e.what());
     }
 
-    // Duplicates: the same configuration and material under another name.
-    {
-      TomlDocument neutral = doc;
-      neutral.erase("problem.name");
-      if (changed) neutral.set_text("impact.target_material", "<target.toml>");
-      const std::string fingerprint = neutral.dump() + "\n--- target ---\n" + run.target_text.value_or("");
-      const std::string label =
-          spec.origin == "grid" ? "grid run " + run.name : spec.origin + " (" + run.name + ")";
-      if (const auto other = fingerprints.find(fingerprint); other != fingerprints.end()) {
-        throw InputError(run_where + ": the same configuration and target as " + other->second +
-                         " (duplicate runs)");
-      }
-      fingerprints.emplace(fingerprint, label);
-      names.emplace(run.name, label);
+    // Duplicates: the same configuration and target material under another name.
+    TomlDocument neutral = d.config;
+    neutral.erase("problem.name");
+    if (d.target_changed) neutral.set_text("impact.target_material", "<target.toml>");
+    const std::string fingerprint = neutral.dump() + "\n--- target ---\n" + run.target_text.value_or("");
+    if (const auto other = fingerprints.find(fingerprint); other != fingerprints.end()) {
+      throw InputError(d.where + ": the same configuration and target as " + other->second +
+                       " (duplicate runs)");
     }
+    fingerprints.emplace(fingerprint, label);
+    names.emplace(run.name, label);
 
-    const auto& s = config.impact;
-    run.impactor_radius = projectile_radius(s.projectile_mass, s.projectile_density);
-    run.impactor_density = s.projectile_density;
-    run.velocity = s.impact_angle == 0.0
-                       ? s.impact_speed
-                       : s.impact_speed * std::cos(s.impact_angle * std::numbers::pi / 180.0);
-    const auto& g = config.simulation.solver.gravity;
-    run.gravity = std::sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
-    run.resolution = run.sized ? run.sizing.spacings_across_radius
-                               : run.sizing.predicted_crater_radius / s.particle_spacing;
-    for (const auto& column : plan.extra_columns) {
-      if (column == "A_low") {
-        run.extra_cells.push_back(full(s.low_sound_speed_modulus));
-      } else if (column == "t_transition") {
-        run.extra_cells.push_back(s.transition_time > 0.0 ? full(s.transition_time) : "");
-      } else if (column.starts_with("target.")) {
-        run.extra_cells.push_back(cell_of(material, column.substr(7)));
-      } else {
-        run.extra_cells.push_back(config_cells.at(column));
-      }
-    }
-    plan.runs.push_back(std::move(run));
+    fill_table_inputs(plan, config, d);
+    plan.runs.push_back(std::move(d.run));
   }
   return plan;
 }
