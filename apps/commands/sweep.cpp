@@ -76,7 +76,8 @@ void run_sweep_command(const SweepCommandOptions& o) {
   if (o.task && *o.task >= static_cast<long long>(plan.runs.size())) {
     throw InputError(fmt::format("--task {}: the study has runs 0 to {}", *o.task, plan.runs.size() - 1));
   }
-  study::write_plan(plan);
+  study::write_plan(plan,
+                    o.task ? std::optional<std::size_t>(static_cast<std::size_t>(*o.task)) : std::nullopt);
   if (!o.emit.empty()) {
     const auto script = study::write_slurm_script(plan, {program, o.threads > 0 ? o.threads : 1});
     std::cout << fmt::format("wrote {} ({} array tasks); after them: craterkit sweep --collect {}\n",

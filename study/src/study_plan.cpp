@@ -540,8 +540,13 @@ bool has_started(const std::filesystem::path& dir) {
 
 }  // namespace
 
-void write_plan(const StudyPlan& plan) {
+void write_plan(const StudyPlan& plan, std::optional<std::size_t> only) {
+  std::vector<const PlannedRun*> runs;
   for (const auto& run : plan.runs) {
+    if (!only || run.index == *only) runs.push_back(&run);
+  }
+  for (const PlannedRun* planned : runs) {
+    const PlannedRun& run = *planned;
     const auto dir = run_directory(plan.out, run.name);
     const auto config = read_if_exists(dir / "config.toml");
     const auto target = read_if_exists(dir / "target.toml");
@@ -555,7 +560,8 @@ void write_plan(const StudyPlan& plan) {
           "or delete the run's folder to run it again");
     }
   }
-  for (const auto& run : plan.runs) {
+  for (const PlannedRun* planned : runs) {
+    const PlannedRun& run = *planned;
     const auto dir = run_directory(plan.out, run.name);
     std::filesystem::create_directories(dir);
     if (run.target_text) write_if_different(dir / "target.toml", *run.target_text);

@@ -304,6 +304,10 @@ TEST(StudyPlan, WritePlanLeavesEqualFilesAndRefusesAStartedRunOfAnotherStudy) {
   const std::string study =
       "[study]\nbase = \"base.toml\"\n[sizing]\nenabled = false\n[grid]\ncohesion = [0.0, 1.0]\n";
   const StudyPlan p = plan(scratch, study);
+  write_plan(p, 1);  // an array task's: its own run only
+  EXPECT_FALSE(std::filesystem::exists(scratch.path() / "out" / "runs" / "cohesion-0"));
+  EXPECT_TRUE(std::filesystem::exists(scratch.path() / "out" / "runs" / "cohesion-1" / "config.toml"));
+  EXPECT_TRUE(std::filesystem::exists(scratch.path() / "out" / "sweep.json"));
   write_plan(p);
   const auto dir = scratch.path() / "out" / "runs" / "cohesion-0";
   for (const char* name : {"config.toml", "target.toml", "run.json"})

@@ -64,7 +64,8 @@ std::string plan_json(const StudyPlan& plan);
 // Creates DIR/runs/<name>/ with config.toml, target.toml and run.json, and DIR/sweep.json; files whose
 // content is already the same are left alone. A run folder that holds another configuration and has started
 // (attempts.log, result.json, failed.json or checkpoint.h5) is an InputError, raised before anything is
-// written: the folder belongs to another version of the study.
-void write_plan(const StudyPlan& plan);
+// written: the folder belongs to another version of the study. With `only`, just that run's folder (and
+// sweep.json): what a Slurm array task needs, without every task rereading every run's files.
+void write_plan(const StudyPlan& plan, std::optional<std::size_t> only = std::nullopt);
 
 }  // namespace craterkit::study
