@@ -104,13 +104,16 @@ void run_sweep_command(const SweepCommandOptions& o) {
   }
   const auto report = study::run_sweep(plan, options);
   std::cout << study::format_collect_summary(report.tables, static_cast<long long>(report.started), o.json);
-  std::size_t failed = 0;
-  for (const auto& r : report.tables.runs) failed += r.status == study::RunStatus::failed ? 1 : 0;
-  if (failed > 0) {
+  std::size_t failed = 0, unfinished = 0;
+  for (const auto& r : report.tables.runs) {
+    failed += r.status == study::RunStatus::failed ? 1 : 0;
+    unfinished += r.status == study::RunStatus::interrupted || r.status == study::RunStatus::pending ? 1 : 0;
+  }
+  if (failed > 0 || unfinished > 0) {
     throw std::runtime_error(
-        fmt::format("{} of {} runs failed (their folders hold failed.json; --retry-failed runs "
-                    "them again)",
-                    failed, report.tables.runs.size()));
+        fmt::format("of {} runs {} failed (their folders hold failed.json; --retry-failed runs "
+                    "them again) and {} did not finish (run the sweep again)",
+                    report.tables.runs.size(), failed, unfinished));
   }
 }
 
