@@ -120,6 +120,7 @@ Study parse_tables(const std::string& text, const std::filesystem::path& file) {
     TomlTable z = root.table("sizing");
     auto& r = study.sizing;
     r.enabled = z.boolean("enabled", r.enabled);
+    r.predict_with_cohesion = z.boolean("predict_with_cohesion", r.predict_with_cohesion);
     r.domain_over_radius = z.number("domain_over_radius", r.domain_over_radius, 0.0, inf, true);
     r.spacings_across_radius = z.number("spacings_across_radius", r.spacings_across_radius, 0.0, inf, true);
     r.core_spacing_over_projectile_radius = z.number("core_spacing_over_projectile_radius",

@@ -286,7 +286,7 @@ void apply_sizing(const PlanContext& ctx, RunDraft& d) {
     throw InputError(d.where + ": " + e.what());
   }
   input.target_density = run.bulk_density;
-  input.strength = run.cohesion;
+  input.strength = study.sizing.predict_with_cohesion ? run.cohesion : 0.0;
   run.sizing = size_run(study.sizing, ctx.law, input, d.spacings);
   if (!study.sizing.enabled) return;
   const auto& s = run.sizing;
@@ -472,7 +472,8 @@ std::string run_json(const StudyPlan& plan, const PlannedRun& run) {
        {{"applied", run.sized},
         {"law", plan.study.law},
         {"rule",
-         {{"domain_over_radius", rule.domain_over_radius},
+         {{"predict_with_cohesion", rule.predict_with_cohesion},
+          {"domain_over_radius", rule.domain_over_radius},
           {"spacings_across_radius", rule.spacings_across_radius},
           {"core_spacing_over_projectile_radius", rule.core_spacing_over_projectile_radius},
           {"end_time_over_growth_time", rule.end_time_over_growth_time}}},
@@ -480,7 +481,7 @@ std::string run_json(const StudyPlan& plan, const PlannedRun& run) {
         {"velocity", number_or_null(s.velocity)},
         {"target_density", number_or_null(run.bulk_density)},
         {"gravity", number_or_null(run.gravity)},
-        {"strength", number_or_null(run.cohesion)},
+        {"strength", rule.predict_with_cohesion ? run.cohesion : 0.0},
         {"predicted_crater_radius", number_or_null(s.predicted_crater_radius)},
         {"spacings_across_radius", number_or_null(s.spacings_across_radius)},
         {"domain_radius", number_or_null(s.domain_radius)},

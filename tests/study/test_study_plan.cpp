@@ -102,6 +102,17 @@ t_transition = 0.2
   EXPECT_EQ(p.runs[6].extra_cells, std::vector<std::string>{"0.20000000000000001"});
 }
 
+TEST(StudyPlan, ThePredictionMayLeaveTheCohesionOut) {
+  Scratch scratch;
+  const StudyPlan p = plan(scratch,
+                           "[study]\nbase = \"sci\"\n[sizing]\npredict_with_cohesion = false\n[grid]\n"
+                           "cohesion = [0.0, 0.5]\n");
+  EXPECT_EQ(p.runs[1].cohesion, 0.5);
+  EXPECT_EQ(p.runs[1].sizing.predicted_crater_radius, p.runs[0].sizing.predicted_crater_radius);
+  EXPECT_EQ(p.runs[1].sizing.domain_radius, p.runs[0].sizing.domain_radius);
+  EXPECT_EQ(parsed(p.runs[1]).impact.domain_radius, parsed(p.runs[0]).impact.domain_radius);
+}
+
 TEST(StudyPlan, ResolutionAxisAndSizingConstants) {
   Scratch scratch;
   const StudyPlan p = plan(scratch, R"([study]

@@ -30,6 +30,9 @@ struct AxisValue {
 // 15 m domain and 0.5 m outer spacing for R_pred = 8.91 m, dx0 = a/2, end time 2 sqrt(R/g).
 struct SizingRule {
   bool enabled = true;
+  // Whether the prediction takes the run's cohesion as the law's strength Y (else Y = 0, the gravity regime's
+  // larger crater: a safe domain when the law's strength term shrinks the crater more than the engine does).
+  bool predict_with_cohesion = true;
   double domain_over_radius = 15.0 / 8.91;
   double spacings_across_radius = 8.91 / 0.5;
   double core_spacing_over_projectile_radius = 0.5;
