@@ -360,7 +360,10 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   double min_signal_time = inf;
   std::uint64_t interacting = 0;
 
-#pragma omp parallel for schedule(dynamic, 128) reduction(min : min_signal_time) reduction(+ : interacting)
+  // firstprivate: each thread reads the frame, the fields and the viscosity parameters from its own copy
+  // rather than through the pointer to the shared ones (the j-loops then take 1-2 % fewer instructions).
+#pragma omp parallel for schedule(dynamic, 128) reduction(min : min_signal_time) reduction(+ : interacting) \
+    firstprivate(frame, fluid, av)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = selection.at(static_cast<std::size_t>(ii));
     if ((flags[i] & (particle_fixed | particle_ejected)) != 0) {
