@@ -66,6 +66,13 @@ struct FluidParticle {
   double balsara;  // f_i of the last evaluation
 };
 
+[[gnu::always_inline]] inline FluidParticle fluid_particle(const FluidFields& f, const Viscosity& av,
+                                                           std::size_t i) {
+  const double c = f.c[i], rho = f.rho[i], inv_rho = f.inv_rho[i];
+  const double alpha = av.use_switch ? f.alpha[i] : av.alpha;
+  return {f.vx[i], f.vy[i], f.vz[i], c, rho, f.pressure[i] * (inv_rho * inv_rho), alpha, f.balsara[i]};
+}
+
 // Sums of the fluid pair body over the neighbours of i.
 struct FluidSums {
   double ax = 0.0, ay = 0.0, az = 0.0;  // dv_i/dt without gravity; solid_pair adds the stress force
@@ -147,6 +154,17 @@ struct SolidParticle {
   double bxx, bxy, bxz, byx, byy, byz, bzx, bzy, bzz;
   double rxx = 0.0, rxy = 0.0, rxz = 0.0, ryy = 0.0, ryz = 0.0, rzz = 0.0;
 };
+
+template <bool artificial_stress>
+[[gnu::always_inline]] inline SolidParticle solid_particle(const SolidFields& s, std::size_t i) {
+  SolidParticle particle{s.bxx[i], s.bxy[i], s.bxz[i], s.byx[i], s.byy[i],
+                         s.byz[i], s.bzx[i], s.bzy[i], s.bzz[i]};
+  if constexpr (artificial_stress) {
+    particle.rxx = s.rxx[i], particle.rxy = s.rxy[i], particle.rxz = s.rxz[i];
+    particle.ryy = s.ryy[i], particle.ryz = s.ryz[i], particle.rzz = s.rzz[i];
+  }
+  return particle;
+}
 
 // Sums of the solid pair body over the neighbours of i.
 struct SolidSums {
@@ -374,20 +392,10 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       continue;
     }
     const PairCentre centre = detail::pair_centre(frame, i);
-    const double hi = centre.h, ci = fluid.c[i], rhoi = fluid.rho[i], inv_rhoi = fluid.inv_rho[i];
-    const double alphai = av.use_switch ? fluid.alpha[i] : av.alpha;
-    const FluidParticle fluid_i{
-        fluid.vx[i], fluid.vy[i],     fluid.vz[i], ci, rhoi, fluid.pressure[i] * (inv_rhoi * inv_rhoi),
-        alphai,      fluid.balsara[i]};
+    const FluidParticle fluid_i = fluid_particle(fluid, av, i);
     SolidParticle solid_i{};  // (dead code, removed by the compiler, for fluids)
-    if constexpr (solid) {
-      solid_i = {stress.bxx[i], stress.bxy[i], stress.bxz[i], stress.byx[i], stress.byy[i],
-                 stress.byz[i], stress.bzx[i], stress.bzy[i], stress.bzz[i]};
-    }
-    if constexpr (artificial_stress) {
-      solid_i.rxx = stress.rxx[i], solid_i.rxy = stress.rxy[i], solid_i.rxz = stress.rxz[i];
-      solid_i.ryy = stress.ryy[i], solid_i.ryz = stress.ryz[i], solid_i.rzz = stress.rzz[i];
-    }
+    if constexpr (solid) solid_i = solid_particle<artificial_stress>(stress, i);
+    const double hi = centre.h, ci = fluid_i.c, alphai = fluid_i.alpha;
 
     FluidSums sum;
     SolidSums solid_sum;
@@ -407,7 +415,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     ax_out[i] = sum.ax + gx_body;
     ay_out[i] = sum.ay + gy_body;
     az_out[i] = sum.az + gz_body;
-    drho_out[i] = rhoi * sum.vv_grad;
+    drho_out[i] = fluid_i.rho * sum.vv_grad;
     if constexpr (solid) {
       du_out[i] = solid_sum.work + 0.5 * sum.viscous;
       store_correction(i, solid_sum, correction, gradients);
