@@ -381,22 +381,31 @@ void NeighbourSearch::candidates_octree(std::size_t g, const Box& box, std::vect
   }
 }
 
+// Three steps: index the sorted particles, find the candidate groups of every group, then write each real
+// particle's list from its group's candidates.
 template <bool Periodic>
 void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, double grow,
                                     const std::uint8_t* query_mark) {
-  const std::size_t n = particles_;        // lists for the real particles only
-  const std::size_t entries = xs_.size();  // particles and mirror images in the tree
+  index_sorted_particles(query_mark);
+  find_candidate_groups<Periodic>(box, grow, query_mark);
   const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
   constexpr double inf = std::numeric_limits<double>::infinity();
-  const std::array<double, 3> half{box.periodic[0] ? 0.5 * edge[0] : inf,
-                                   box.periodic[1] ? 0.5 * edge[1] : inf,
-                                   box.periodic[2] ? 0.5 * edge[2] : inf};
+  const GatherQuery query{edge,
+                          {box.periodic[0] ? 0.5 * edge[0] : inf, box.periodic[1] ? 0.5 * edge[1] : inf,
+                           box.periodic[2] ? 0.5 * edge[2] : inf},
+                          box.periodic,
+                          grow,
+                          query_mark};
+  write_lists<Periodic>(query, lists);
+}
+
+// rank_ (original index -> sorted index), group_of_ (sorted index -> group), one scratch per thread and,
+// with a query mark, group_has_query_.
+void NeighbourSearch::index_sorted_particles(const std::uint8_t* query_mark) {
+  const std::size_t n = particles_;        // lists for the real particles only
+  const std::size_t entries = xs_.size();  // particles and mirror images in the tree
   rank_.resize(n);
   resize_buffer(group_of_, entries, (entries - n) / 4);
-  const double* xs = xs_.data();
-  const double* ys = ys_.data();
-  const double* zs = zs_.data();
-  const double* hs = hs_.data();
 #pragma omp parallel
   {
 #pragma omp for schedule(static) nowait
@@ -411,15 +420,20 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, doubl
   if (scratch_.size() < std::size_t(omp_get_max_threads()))
     scratch_.resize(std::size_t(omp_get_max_threads()));
   // With a query mark only the groups holding a queried particle need candidates.
-  const std::size_t group_count = groups_.size();
   if (query_mark != nullptr) {
-    group_has_query_.assign(group_count, 0);
+    group_has_query_.assign(groups_.size(), 0);
     for (std::size_t i = 0; i < n; ++i) {
       if (query_mark[i] != 0) group_has_query_[group_of_[rank_[i]]] = 1;
     }
   }
+}
 
-  // Candidate groups of every group, counted then stored (finding them twice is cheap next to the pairs).
+// Candidate groups of every group (CSR in candidate_offsets_, candidates_), counted then stored (finding
+// them twice is cheap next to the pairs). Groups of images alone, and with a query mark the groups without
+// a queried particle, get none.
+template <bool Periodic>
+void NeighbourSearch::find_candidate_groups(const Box& box, double grow, const std::uint8_t* query_mark) {
+  const std::size_t group_count = groups_.size();
   const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
     out.clear();
     const bool queried = group_queried_[g] != 0 && (query_mark == nullptr || group_has_query_[g] != 0);
@@ -447,68 +461,84 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, doubl
                 candidates_.begin() + std::ptrdiff_t(candidate_offsets_[g]));
     }
   }
+}
 
-  // Neighbours of sorted particle k written to out[0..]; returns their number, or `room` + 1 when they
-  // might not fit in `room` entries (the test writes every candidate before deciding whether to keep it).
-  // Only the identical entry is dropped: a particle near a mirror plane keeps its own image.
-  const auto gather = [&](std::uint32_t k, std::uint32_t* out, std::size_t room) -> std::size_t {
-    if (query_mark != nullptr && query_mark[original_[k]] == 0) return 0;  // (k is a real particle)
-    const std::uint32_t g = group_of_[k];
-    const double xi = xs[k], yi = ys[k], zi = zs[k], hi = hs[k];
-    std::size_t used = 0;
-    for (std::uint64_t c = candidate_offsets_[g]; c < candidate_offsets_[g + 1]; ++c) {
-      const Group& o = groups_[candidates_[c]];
-      // Point-to-box distance: skip the whole candidate when even its largest h cannot reach i.
-      const double gx = interval_gap<Periodic>(xi, xi, o.lower[0], o.upper[0], box.periodic[0], edge[0]);
-      const double gy = interval_gap<Periodic>(yi, yi, o.lower[1], o.upper[1], box.periodic[1], edge[1]);
-      const double gz = interval_gap<Periodic>(zi, zi, o.lower[2], o.upper[2], box.periodic[2], edge[2]);
-      const double box_reach = grow * (hi + o.h_max);
-      if (gx * gx + gy * gy + gz * gz >= box_reach * box_reach) continue;
-      if (used + (o.end - o.begin) > room) return room + 1;
-      for (std::uint32_t block = o.begin; block < o.end; block += block_size) {
-        const std::uint32_t length = std::min(o.end - block, block_size);
-        const double* __restrict bx = xs + block;
-        const double* __restrict by = ys + block;
-        const double* __restrict bz = zs + block;
-        const double* __restrict bh = hs + block;
-        // Two steps: the distance tests (vectorised, no branches), then a branch-free compaction (the
-        // test is unpredictable: about 1 in 3 candidates is a neighbour). margin > 0 exactly when
-        // r^2 < reach^2 (IEEE subtraction of unequal finite numbers is nonzero).
-        std::array<double, block_size> margin;
-        for (std::uint32_t m = 0; m < length; ++m) {
-          double dx = xi - bx[m], dy = yi - by[m], dz = zi - bz[m];
-          if constexpr (Periodic) {  // minimum image, branch-free (half = infinity on open axes)
-            dx = dx > half[0] ? dx - edge[0] : (dx < -half[0] ? dx + edge[0] : dx);
-            dy = dy > half[1] ? dy - edge[1] : (dy < -half[1] ? dy + edge[1] : dy);
-            dz = dz > half[2] ? dz - edge[2] : (dz < -half[2] ? dz + edge[2] : dz);
-          }
-          const double reach = grow * (hi + bh[m]);
-          margin[m] = reach * reach - (dx * dx + dy * dy + dz * dz);
+// Neighbours of sorted particle k written to out[0..]; returns their number, or `room` + 1 when they
+// might not fit in `room` entries (the test writes every candidate before deciding whether to keep it).
+// Only the identical entry is dropped: a particle near a mirror plane keeps its own image.
+template <bool Periodic>
+std::size_t NeighbourSearch::gather_neighbours(std::uint32_t k, std::uint32_t* out, std::size_t room,
+                                               const GatherQuery& query) const {
+  if (query.query_mark != nullptr && query.query_mark[original_[k]] == 0) return 0;  // (k is a real particle)
+  const std::array<double, 3>& edge = query.edge;
+  const std::array<double, 3>& half = query.half;
+  const double grow = query.grow;
+  const double* xs = xs_.data();
+  const double* ys = ys_.data();
+  const double* zs = zs_.data();
+  const double* hs = hs_.data();
+  const std::uint32_t g = group_of_[k];
+  const double xi = xs[k], yi = ys[k], zi = zs[k], hi = hs[k];
+  std::size_t used = 0;
+  for (std::uint64_t c = candidate_offsets_[g]; c < candidate_offsets_[g + 1]; ++c) {
+    const Group& o = groups_[candidates_[c]];
+    // Point-to-box distance: skip the whole candidate when even its largest h cannot reach i.
+    const double gx = interval_gap<Periodic>(xi, xi, o.lower[0], o.upper[0], query.periodic[0], edge[0]);
+    const double gy = interval_gap<Periodic>(yi, yi, o.lower[1], o.upper[1], query.periodic[1], edge[1]);
+    const double gz = interval_gap<Periodic>(zi, zi, o.lower[2], o.upper[2], query.periodic[2], edge[2]);
+    const double box_reach = grow * (hi + o.h_max);
+    if (gx * gx + gy * gy + gz * gz >= box_reach * box_reach) continue;
+    if (used + (o.end - o.begin) > room) return room + 1;
+    for (std::uint32_t block = o.begin; block < o.end; block += block_size) {
+      const std::uint32_t length = std::min(o.end - block, block_size);
+      const double* __restrict bx = xs + block;
+      const double* __restrict by = ys + block;
+      const double* __restrict bz = zs + block;
+      const double* __restrict bh = hs + block;
+      // Two steps: the distance tests (vectorised, no branches), then a branch-free compaction (the
+      // test is unpredictable: about 1 in 3 candidates is a neighbour). margin > 0 exactly when
+      // r^2 < reach^2 (IEEE subtraction of unequal finite numbers is nonzero).
+      std::array<double, block_size> margin;
+      for (std::uint32_t m = 0; m < length; ++m) {
+        double dx = xi - bx[m], dy = yi - by[m], dz = zi - bz[m];
+        if constexpr (Periodic) {  // minimum image, branch-free (half = infinity on open axes)
+          dx = dx > half[0] ? dx - edge[0] : (dx < -half[0] ? dx + edge[0] : dx);
+          dy = dy > half[1] ? dy - edge[1] : (dy < -half[1] ? dy + edge[1] : dy);
+          dz = dz > half[2] ? dz - edge[2] : (dz < -half[2] ? dz + edge[2] : dz);
         }
-        for (std::uint32_t m = 0; m < length; ++m) {
-          out[used] = original_[block + m];
-          used += std::size_t(margin[m] > 0) & std::size_t(block + m != k);
-        }
+        const double reach = grow * (hi + bh[m]);
+        margin[m] = reach * reach - (dx * dx + dy * dy + dz * dz);
+      }
+      for (std::uint32_t m = 0; m < length; ++m) {
+        out[used] = original_[block + m];
+        used += std::size_t(margin[m] > 0) & std::size_t(block + m != k);
       }
     }
-    return used;
-  };
-  // The same into a growable vector from position `at`.
-  const auto gather_into = [&](std::uint32_t k, std::vector<std::uint32_t>& v, std::size_t at) {
-    for (;;) {
-      const std::size_t room = v.size() - at;
-      const std::size_t count = gather(k, v.data() + at, room);
-      if (count <= room) return count;
-      v.resize(std::max(v.size() + v.size() / 2, at + 2 * room) + 1024);  // geometric growth
-    }
-  };
+  }
+  return used;
+}
 
-  // Lists are written in the caller's particle order straight into lists.neighbours: thread t owns a
-  // contiguous range of particles and a region of the array sized from a sample (every 16th particle's
-  // count, plus 3 % and a margin); one move closes the gaps between the regions afterwards. A thread
-  // that fills its region continues in its own overflow vector (rare: the merge then copies once).
-  // Three barriers per build in all, so that shared cores (where each barrier may cost a scheduler time
-  // slice) do not slow the build; about 3 % slack in the lists is the only extra memory.
+// The same into a growable vector from position `at`.
+template <bool Periodic>
+std::size_t NeighbourSearch::gather_neighbours_into(std::uint32_t k, std::vector<std::uint32_t>& v,
+                                                    std::size_t at, const GatherQuery& query) const {
+  for (;;) {
+    const std::size_t room = v.size() - at;
+    const std::size_t count = gather_neighbours<Periodic>(k, v.data() + at, room, query);
+    if (count <= room) return count;
+    v.resize(std::max(v.size() + v.size() / 2, at + 2 * room) + 1024);  // geometric growth
+  }
+}
+
+// Lists are written in the caller's particle order straight into lists.neighbours: thread t owns a
+// contiguous range of particles and a region of the array sized from a sample (every 16th particle's
+// count, plus 3 % and a margin); one move closes the gaps between the regions afterwards. A thread
+// that fills its region continues in its own overflow vector (rare: the merge then copies once).
+// Three barriers per build in all, so that shared cores (where each barrier may cost a scheduler time
+// slice) do not slow the build; about 3 % slack in the lists is the only extra memory.
+template <bool Periodic>
+void NeighbourSearch::write_lists(const GatherQuery& query, NeighbourLists& lists) {
+  const std::size_t n = particles_;
   constexpr std::size_t sample_stride = 16;
   lists.offsets.resize(n + 1);
   lists.offsets[0] = 0;
@@ -521,25 +551,14 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, doubl
     const std::size_t first = n * id / threads, last = n * (id + 1) / threads;
     std::size_t sampled = 0, samples = 0;
     for (std::size_t i = first; i < last; i += sample_stride, ++samples) {
-      sampled += gather_into(rank_[i], t.found, 0);
+      sampled += gather_neighbours_into<Periodic>(rank_[i], t.found, 0, query);
     }
     t.region_size =
         samples ? std::size_t(1.03 * double(sampled) * double(last - first) / double(samples)) : 0;
     if (last > first) t.region_size += 4096;  // margin for small ranges and sampling noise
 #pragma omp barrier
 #pragma omp single
-    {
-      std::size_t start = 0;
-      for (std::size_t u = 0; u < threads; ++u) {
-        scratch_[u].region_start = start;
-        start += scratch_[u].region_size;
-      }
-      if (lists.neighbours.size() < start) {
-        // reserve first: resize alone would let std::vector double its capacity (2x the lists' memory)
-        if (lists.neighbours.capacity() < start) lists.neighbours.reserve(start);
-        lists.neighbours.resize(start);
-      }
-    }
+    lay_out_regions(threads, lists);
     // implicit barrier: regions are laid out
     std::uint32_t* region = lists.neighbours.data() + t.region_start;
     std::size_t used = 0;
@@ -547,13 +566,14 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, doubl
     t.used = 0;  // entries in the overflow vector
     for (std::size_t i = first; i < last; ++i) {
       const std::uint32_t k = rank_[i];
-      std::size_t count =
-          t.overflow_from == last ? gather(k, region + used, t.region_size - used) : t.region_size + 1;
+      std::size_t count = t.overflow_from == last
+                              ? gather_neighbours<Periodic>(k, region + used, t.region_size - used, query)
+                              : t.region_size + 1;
       if (count <= t.region_size - used) {
         used += count;
       } else {
         if (t.overflow_from == last) t.overflow_from = i;
-        count = gather_into(k, t.found, t.used);
+        count = gather_neighbours_into<Periodic>(k, t.found, t.used, query);
         t.used += count;
       }
       lists.offsets[i + 1] = count;  // the count for now
@@ -563,33 +583,7 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, doubl
     overflowed |= t.overflow_from != last;
 #pragma omp barrier
 #pragma omp single
-    {
-      std::size_t base = 0;
-      for (std::size_t u = 0; u < threads; ++u) {
-        scratch_[u].final_start = base;
-        base += scratch_[u].region_used + scratch_[u].used;
-      }
-      if (!overflowed) {
-        // Close the gaps: every region moves down (final_start <= region_start when nothing overflowed),
-        // in ascending order so that no data is overwritten before it is moved.
-        for (std::size_t u = 1; u < threads; ++u) {
-          const ThreadScratch& r = scratch_[u];
-          if (r.region_used == 0) continue;  // (the array may be empty: no null pointer to memmove)
-          std::memmove(lists.neighbours.data() + r.final_start, lists.neighbours.data() + r.region_start,
-                       r.region_used * sizeof(std::uint32_t));
-        }
-      } else {
-        std::vector<std::uint32_t> merged(base);
-        for (std::size_t u = 0; u < threads; ++u) {
-          const ThreadScratch& r = scratch_[u];
-          auto out = std::copy_n(lists.neighbours.data() + r.region_start, r.region_used,
-                                 merged.data() + r.final_start);
-          std::copy_n(r.found.data(), r.used, out);
-        }
-        lists.neighbours.swap(merged);
-      }
-      lists.neighbours.resize(base);  // shrinking keeps the capacity for the next build
-    }
+    join_regions(threads, overflowed, lists);
     // implicit barrier; offsets: prefix sums over each thread's range from its final start
     std::uint64_t offset = t.final_start;
     for (std::size_t i = first; i < last; ++i) {
@@ -597,6 +591,50 @@ void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, doubl
       lists.offsets[i + 1] = offset;
     }
   }
+}
+
+// Each thread's region of lists.neighbours, one after the other, from the sizes the threads estimated.
+void NeighbourSearch::lay_out_regions(std::size_t threads, NeighbourLists& lists) {
+  std::size_t start = 0;
+  for (std::size_t u = 0; u < threads; ++u) {
+    scratch_[u].region_start = start;
+    start += scratch_[u].region_size;
+  }
+  if (lists.neighbours.size() < start) {
+    // reserve first: resize alone would let std::vector double its capacity (2x the lists' memory)
+    if (lists.neighbours.capacity() < start) lists.neighbours.reserve(start);
+    lists.neighbours.resize(start);
+  }
+}
+
+// The threads' lists made contiguous in thread order (each thread's final_start set): the regions moved
+// together, or, when a thread overflowed, regions and overflow vectors copied into a new array.
+void NeighbourSearch::join_regions(std::size_t threads, bool overflowed, NeighbourLists& lists) {
+  std::size_t base = 0;
+  for (std::size_t u = 0; u < threads; ++u) {
+    scratch_[u].final_start = base;
+    base += scratch_[u].region_used + scratch_[u].used;
+  }
+  if (!overflowed) {
+    // Close the gaps: every region moves down (final_start <= region_start when nothing overflowed),
+    // in ascending order so that no data is overwritten before it is moved.
+    for (std::size_t u = 1; u < threads; ++u) {
+      const ThreadScratch& r = scratch_[u];
+      if (r.region_used == 0) continue;  // (the array may be empty: no null pointer to memmove)
+      std::memmove(lists.neighbours.data() + r.final_start, lists.neighbours.data() + r.region_start,
+                   r.region_used * sizeof(std::uint32_t));
+    }
+  } else {
+    std::vector<std::uint32_t> merged(base);
+    for (std::size_t u = 0; u < threads; ++u) {
+      const ThreadScratch& r = scratch_[u];
+      auto out =
+          std::copy_n(lists.neighbours.data() + r.region_start, r.region_used, merged.data() + r.final_start);
+      std::copy_n(r.found.data(), r.used, out);
+    }
+    lists.neighbours.swap(merged);
+  }
+  lists.neighbours.resize(base);  // shrinking keeps the capacity for the next build
 }
 
 void NeighbourSearch::build(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {

@@ -1,11 +1,10 @@
 #include "craterkit/sph/rates/gradient_correction.hpp"
 
-#include "craterkit/sph/particles/minimum_image.hpp"
+#include "pair_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 namespace craterkit::sph {
 
@@ -91,36 +90,26 @@ template <class Kernel, bool mirrored>
 void correction_impl(Particles& p, const PairList& pairs, const RateOptions& options, const double* volume,
                      const ParticleSelection& selection) {
   const auto n = static_cast<std::int64_t>(selection.size());
-  const double* x = p.x.data();
-  const double* y = p.y.data();
-  const double* z = p.z.data();
-  const double* h = p.smoothing_length.data();
+  const detail::PairFrame frame = detail::pair_frame(p, options.period, options.mirror);
   const std::uint8_t* flags = p.flags.data();
   const std::uint64_t* offsets = pairs.offsets.data();
   const std::uint32_t* neighbours = pairs.neighbours.data();
-  const double inf = std::numeric_limits<double>::infinity();
-  const double Lx = options.period[0], Ly = options.period[1], Lz = options.period[2];
-  const double hx = Lx > 0.0 ? 0.5 * Lx : inf, hy = Ly > 0.0 ? 0.5 * Ly : inf, hz = Lz > 0.0 ? 0.5 * Lz : inf;
-  const MirrorPlanes planes = options.mirror;
 
-#pragma omp parallel for schedule(dynamic, 128)
+  // firstprivate: each thread's own copy of the frame (1 % fewer instructions than through the pointer to
+  // the shared one).
+#pragma omp parallel for schedule(dynamic, 128) firstprivate(frame)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = selection.at(static_cast<std::size_t>(ii));
     if ((flags[i] & particle_ejected) != 0) continue;
-    const double xi = x[i], yi = y[i], zi = z[i], hi = h[i];
+    const detail::PairCentre centre = detail::pair_centre(frame, i);
     // sum_j V_j (x_j - x_i) (x) grad_i W_ij = -sum_j V_j (dW/dr / r) x_ij (x) x_ij, x_ij = x_i - x_j.
     std::array<double, 6> M{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
     for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
-      const MirrorImage image = mirror_image<mirrored>(neighbours[k]);
-      const std::size_t j = image.index;
-      const double dx = minimum_image(xi - image.position(0, planes, x[j]), Lx, hx);
-      const double dy = minimum_image(yi - image.position(1, planes, y[j]), Ly, hy);
-      const double dz = minimum_image(zi - image.position(2, planes, z[j]), Lz, hz);
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      const double hsum = hi + h[j];
-      if (r2 >= hsum * hsum || r2 <= 0.0) continue;
-      const double r = std::sqrt(r2);
-      const double w = -volume[j] * Kernel::derivative(r, 0.5 * hsum) / r;
+      const detail::PairGeometry pair = detail::pair_geometry<mirrored>(frame, centre, neighbours[k]);
+      if (pair.beyond_support() || pair.coincident()) continue;
+      const detail::KernelGradient grad = detail::kernel_gradient<Kernel>(pair);
+      const double w = -volume[pair.j()] * grad.dwdr / grad.r;
+      const double dx = pair.dx, dy = pair.dy, dz = pair.dz;
       M[0] += w * dx * dx;
       M[1] += w * dx * dy;
       M[2] += w * dx * dz;

@@ -141,9 +141,33 @@ class NeighbourSearch {
   void make_octree();
   void split_at_median(std::uint32_t begin, std::uint32_t end);
   // Lists of every real particle (query_mark null) or of the marked ones (by original index), with pairs
-  // r < grow (h_i + h_j).
+  // r < grow (h_i + h_j), in three steps: index_sorted_particles (rank_, group_of_, group_has_query_),
+  // find_candidate_groups (candidate_offsets_, candidates_), write_lists.
   template <bool Periodic>
   void collect_pairs(const Box& box, NeighbourLists& lists, double grow, const std::uint8_t* query_mark);
+  void index_sorted_particles(const std::uint8_t* query_mark);
+  template <bool Periodic>
+  void find_candidate_groups(const Box& box, double grow, const std::uint8_t* query_mark);
+  // What the list of one particle needs besides the tree and the candidate groups.
+  struct GatherQuery {
+    std::array<double, 3> edge, half;  // box edges; half of them on periodic axes, +infinity on the others
+    std::array<bool, 3> periodic;
+    double grow;
+    const std::uint8_t* query_mark;
+  };
+  template <bool Periodic>
+  void write_lists(const GatherQuery& query, NeighbourLists& lists);
+  // write_lists' parts: the list of sorted particle k into out[0, room) (room + 1 when it may not fit) or
+  // into a growable vector from `at`; the threads' regions of the lists laid out before they are filled
+  // and joined after.
+  template <bool Periodic>
+  std::size_t gather_neighbours(std::uint32_t k, std::uint32_t* out, std::size_t room,
+                                const GatherQuery& query) const;
+  template <bool Periodic>
+  std::size_t gather_neighbours_into(std::uint32_t k, std::vector<std::uint32_t>& v, std::size_t at,
+                                     const GatherQuery& query) const;
+  void lay_out_regions(std::size_t threads, NeighbourLists& lists);
+  void join_regions(std::size_t threads, bool overflowed, NeighbourLists& lists);
   template <bool Periodic>
   void candidates_octree(std::size_t g, const Box& box, std::vector<std::uint32_t>& out, double grow) const;
   // build_for(): new positions into the tree; false when the motion since the build exceeds the skin.
