@@ -94,7 +94,7 @@ struct RelativeVelocity {
   return {i.vx - image.vector(0, f.vx[j]), i.vy - image.vector(1, f.vy[j]), i.vz - image.vector(2, f.vz[j])};
 }
 
-// Pressure force, artificial viscosity, continuity and energy of one pair (rates.hpp; physics.md section 1).
+// Pressure force, artificial viscosity, continuity and energy of one pair (rates.hpp; docs/physics.md section 1).
 template <bool solid>
 [[gnu::always_inline]] inline void fluid_pair(const FluidParticle& i, const FluidFields& f,
                                               const Viscosity& av, const PairGeometry& pair,
