@@ -1,16 +1,16 @@
-// craterkit run: the main job on its embedded default. For now (scaling stage only):
-//  1. the SCI impact on Ryugu through the Jutzi et al. (2022) constants at a few cohesions, against the
-//     observed apparent radius 7.25 +- 0.8 m (Arakawa et al. 2020);
-//  2. the Ceres fit of the shipped example table data/examples/radii_example.csv (synthetic, see its header).
-// Later stages (simulation, sweep, chronology) are meant to slot into run_main_job as further steps.
-#include <cmath>
+// craterkit run: the main job, the whole chain on its embedded default (docs/main_job.md):
+//  1. simulations: a study of impacts run live by the engine (`craterkit sweep`, study/sweep.hpp);
+//  2. the Ceres fit of the point-source constants to the engine's craters;
+//  3. the SCI crater and the cohesion that makes the observed radius;
+//  4. crater-formation rates per cohesion and 5. model ages per cohesion.
+// By default the live study is two runs of the shipped cohesion x size study, which are checked against its
+// table, and the fit uses that whole table (data/radii/); --full runs the whole study live, --study any
+// study.
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <string>
-#include <vector>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -19,137 +19,134 @@
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
-#include "craterkit/scaling/constant_sets.hpp"
-#include "craterkit/scaling/fit.hpp"
-#include "craterkit/scaling/fit_json.hpp"
 #include "craterkit/scaling/radii_table.hpp"
-#include "fit_report.hpp"
+#include "craterkit/study/study_file.hpp"
+#include "craterkit/study/study_plan.hpp"
+#include "craterkit/study/sweep.hpp"
+#include "craterkit_version.hpp"
+#include "main_job_stages.hpp"
 
 namespace craterkit::cli {
 namespace {
 
-struct RunOptions {
-  std::optional<std::string> out;
+// The embedded default: two runs of the coarse cohesion x size study, live, and that study's shipped table.
+constexpr const char* kDefaultStudy = "studies/main_job.toml";
+constexpr const char* kFullStudy = "studies/cohesion_size_coarse.toml";
+constexpr const char* kShippedTable = "radii/cohesion_size_coarse.csv";
+
+struct MainJobOptions {
+  std::string out = "craterkit-main-job";
+  std::optional<std::string> study;
+  bool full = false;
+  int jobs = 0;
+  int threads = 0;
   bool json = false;
 };
 
-// The SCI experiment (docs/physics.md sections 4 and 6): 2 kg, 2700 kg/m^3, 2 km/s, vertical, into Ryugu.
-constexpr double kSciMass = 2.0;                             // kg
-constexpr double kSciDensity = 2700.0;                       // kg/m^3
-constexpr double kSciVelocity = 2000.0;                      // m/s
-constexpr double kRyuguGravity = 1.4e-4;                     // m/s^2
-constexpr double kSciObservedRadius = 7.25;                  // m, apparent radius (Arakawa et al. 2020)
-constexpr double kSciObservedSigma = 0.8;                    // m
-const std::vector<double> kCohesions{0.05, 0.5, 5.0, 50.0};  // Pa
-
-nlohmann::json sci_example(bool print) {
-  const auto set = scaling::load_constant_set("jutzi2022_ryugu");
-  scaling::Impactor impactor{std::cbrt(3.0 * kSciMass / (4.0 * std::numbers::pi * kSciDensity)), kSciDensity,
-                             kSciVelocity};
-  scaling::Target target{set.target_density.value(), kRyuguGravity, set.strength.value()};
-  nlohmann::json rows = nlohmann::json::array();
-  if (print) {
-    fmt::print(
-        "SCI impact on Ryugu: {} kg, a = {:.4f} m, {} kg/m^3, U = {} m/s into rho = {} kg/m^3, g = {} "
-        "m/s^2\n",
-        kSciMass, impactor.radius, kSciDensity, kSciVelocity, target.density, target.gravity);
-    fmt::print("law: {} ({} form: {} = {}, {} = {}, mu = {}, nu = {})\n", set.name,
-               scaling::to_string(set.law.form), scaling::coefficient_name(set.law.form, 1),
-               set.law.coefficient_1, scaling::coefficient_name(set.law.form, 2), set.law.coefficient_2,
-               set.law.mu, set.law.nu);
-    fmt::print("observed apparent radius: {} +- {} m (Arakawa et al. 2020)\n", kSciObservedRadius,
-               kSciObservedSigma);
-    fmt::print("  {:>9}  {:>9}  {:>7}  {:>12}  {:>9}  {}\n", "Y (Pa)", "R (m)", "R/a", "regime", "gravity %",
-               "vs observed");
-  }
-  std::vector<double> cohesions{*set.strength};
-  for (double y : kCohesions) {
-    if (y != *set.strength) cohesions.push_back(y);
-  }
-  for (double y : cohesions) {
-    target.strength = y;
-    const double radius = scaling::crater_radius(set.law, impactor, target);
-    const auto regime = scaling::regime(set.law, impactor, target);
-    const double pull = (radius - kSciObservedRadius) / kSciObservedSigma;
-    rows.push_back({{"strength", y},
-                    {"crater_radius", radius},
-                    {"radius_ratio", radius / impactor.radius},
-                    {"regime", scaling::to_string(regime.kind)},
-                    {"gravity_share", regime.gravity_share},
-                    {"deviation_sigma", pull}});
-    if (print) {
-      fmt::print("  {:>9.3g}  {:>9.3f}  {:>7.1f}  {:>12}  {:>9.1f}  {:+.1f} sigma{}\n", y, radius,
-                 radius / impactor.radius, scaling::to_string(regime.kind), 100.0 * regime.gravity_share,
-                 pull, y == *set.strength ? "  (the set's cohesion)" : "");
-    }
-  }
-  target.strength = 0.0;
-  const double gravity_limit = scaling::crater_radius(set.law, impactor, target);
-  target.strength = *set.strength;
-  const double impactor_for_observed =
-      scaling::solve_impactor_radius(set.law, kSciObservedRadius, impactor, target);
-  if (print) {
-    fmt::print("  cohesionless (pure-gravity) limit: R = {:.3f} m\n", gravity_limit);
-    fmt::print("  impactor radius that makes R = {} m at Y = {} Pa: {:.4f} m\n\n", kSciObservedRadius,
-               *set.strength, impactor_for_observed);
-  }
-  return {{"impactor_radius", impactor.radius},
-          {"impactor_mass", kSciMass},
-          {"impactor_density", kSciDensity},
-          {"velocity", kSciVelocity},
-          {"target_density", set.target_density.value()},
-          {"gravity", kRyuguGravity},
-          {"constant_set", set.name},
-          {"observed_crater_radius", kSciObservedRadius},
-          {"observed_crater_radius_sigma", kSciObservedSigma},
-          {"cohesions", rows},
-          {"gravity_limit_radius", gravity_limit},
-          {"impactor_radius_for_observed", impactor_for_observed}};
+std::string producer() {
+  const std::string commit = CRATERKIT_GIT_COMMIT;
+  return std::string("craterkit ") + CRATERKIT_VERSION + (commit.empty() ? "" : " (git " + commit + ")");
 }
 
-nlohmann::json example_fit(bool print) {
-  const auto path = data_file("examples/radii_example.csv");
-  const auto table = scaling::read_radii_csv(path);
-  scaling::FitOptions options;
-  options.form = scaling::Form::hh2011;  // the form the synthetic table was generated in
-  const auto fit = scaling::fit_scaling_law(table, options);
-  if (print) {
-    print_fit_report(fit, path.string(), table.rows.size());
-    fmt::print(
-        "  (synthetic table: generated by scripts/make_radii_example.py with H1 = 0.60, H2 = 0.25, "
-        "mu = 0.44, nu = 0.4 and 5 % noise)\n");
+void check_options(const MainJobOptions& o) {
+  if (o.full && o.study)
+    throw InputError("--full and --study exclude each other: --full is the shipped study");
+  if (o.jobs < 0) throw InputError(fmt::format("--jobs {}: must be >= 1", o.jobs));
+  if (o.threads < 0) throw InputError(fmt::format("--threads {}: must be >= 1", o.threads));
+  if (o.out.empty()) throw InputError("--out must name a folder");
+  if (std::filesystem::exists(o.out) && !std::filesystem::is_directory(o.out)) {
+    throw InputError("--out " + o.out + " is not allowed: it exists and is not a folder");
   }
-  return scaling::fit_to_json(fit);
 }
 
-void run_main_job(const RunOptions& options) {
-  if (options.out && std::filesystem::exists(*options.out) && !std::filesystem::is_directory(*options.out)) {
-    throw InputError("--out " + *options.out + " is not allowed: it exists and is not a directory");
+// Runs the live study into DIR/sweep (finished runs of an earlier main job are reused) and returns its table.
+scaling::RadiiTable run_simulations(const std::filesystem::path& study_file, const MainJobOptions& o,
+                                    std::string& report) {
+  const study::Study s = study::load_study(study_file);
+  const study::StudyPlan plan = study::plan_study(s, std::filesystem::path(o.out) / "sweep");
+  study::write_plan(plan, std::nullopt);
+  study::SweepOptions options;
+  options.jobs =
+      o.jobs > 0 ? o.jobs : std::min<int>(study::available_cores(), static_cast<int>(plan.runs.size()));
+  options.child = {std::filesystem::read_symlink("/proc/self/exe"),
+                   o.threads > 0 ? o.threads : study::default_threads(options.jobs)};
+  options.producer = producer();
+  options.log = &std::cerr;
+  if (!o.json) {
+    fmt::print("1. simulations: study {} ({} runs) in {}, {} at once, {} thread(s) each\n",
+               study_file.string(), plan.runs.size(), plan.out.string(), options.jobs, options.child.threads);
+    std::fflush(stdout);
   }
-  const bool print = !options.json;
-  const nlohmann::json sci = sci_example(print);
-  const nlohmann::json fit = example_fit(print);
-  if (options.out) {
-    const std::filesystem::path dir(*options.out);
-    std::filesystem::create_directories(dir);
-    write_text_atomically(dir / "sci_example.json", sci.dump(2) + "\n");
-    write_text_atomically(dir / "scaling_fit.json", fit.dump(2) + "\n");
-    if (print)
-      fmt::print("written: {}, {}\n", (dir / "sci_example.json").string(),
-                 (dir / "scaling_fit.json").string());
+  const auto sweep = study::run_sweep(plan, options);
+  std::size_t unusable = 0;
+  for (const auto& r : sweep.tables.runs) unusable += r.status == study::RunStatus::done ? 0 : 1;
+  if (unusable > 0) {
+    throw std::runtime_error(fmt::format(
+        "{} of {} runs of the study did not give a crater (see {}/runs.csv; their folders hold failed.json); "
+        "run the main job again to resume",
+        unusable, sweep.tables.runs.size(), plan.out.string()));
   }
-  if (options.json) std::cout << nlohmann::json{{"sci_example", sci}, {"scaling_fit", fit}}.dump(2) << "\n";
+  report +=
+      fmt::format("\n## Simulations\n\nStudy {}: {} runs by the engine in {} (table {}).\n",
+                  study_file.string(), plan.runs.size(), plan.out.string(), sweep.tables.radii_csv.string());
+  return scaling::read_radii_csv(sweep.tables.radii_csv);
+}
+
+void run_main_job(const MainJobOptions& o) {
+  check_options(o);
+  const bool default_study = !o.full && !o.study;
+  const std::filesystem::path study_file =
+      o.study ? std::filesystem::path(*o.study) : data_file(o.full ? kFullStudy : kDefaultStudy);
+  std::string report = fmt::format("# craterkit main job\n\n{}; results in {}.\n", producer(), o.out);
+  nlohmann::json summary = {{"producer", producer()}, {"study", study_file.string()}};
+
+  const scaling::RadiiTable live = run_simulations(study_file, o, report);
+  scaling::RadiiTable table = live;
+  if (default_study) {
+    table = scaling::read_radii_csv(data_file(kShippedTable));
+    summary["live_runs"] = compare_with_shipped(live, table, report);
+  }
+  if (!o.json)
+    fmt::print("2. fit of the scaling constants to {} craters of {}\n", table.rows.size(), table.source);
+  nlohmann::json fit_json;
+  const auto fit = fit_engine_radii(table, fit_json, report);
+  summary["fit"] = fit_json;
+  if (!o.json) fmt::print("3. the SCI crater, 4. rates and 5. ages per cohesion under the fitted law\n");
+  summary["sci"] = sci_cohesion(fit.law(), table.rows.front().target.density, report);
+  summary["rates"] = relative_rates(fit.law(), report);
+  summary["ages"] = model_ages(fit.law(), report);
+
+  const std::filesystem::path dir(o.out);
+  write_text_atomically(dir / "fit.json", fit_json.dump(2) + "\n");
+  write_text_atomically(dir / "summary.json", summary.dump(2) + "\n");
+  write_text_atomically(dir / "report.md", report);
+  if (o.json) {
+    std::cout << summary.dump(2) << "\n";
+    return;
+  }
+  std::cout << report;
+  fmt::print("\nwritten: {}, {}, {}\n", (dir / "report.md").string(), (dir / "summary.json").string(),
+             (dir / "fit.json").string());
 }
 
 void add_run_command(CLI::App& parent) {
-  auto options = std::make_shared<RunOptions>();
+  auto options = std::make_shared<MainJobOptions>();
   auto* sub = parent.add_subcommand(
       "run",
-      "The main job on its embedded default: SCI-on-Ryugu scaling example and the fit of the shipped "
-      "example radii table");
-  sub->add_option("--out", options->out,
-                  "Directory for sci_example.json and scaling_fit.json (atomic writes)");
-  sub->add_flag("--json", options->json, "Print one JSON object instead of text");
+      "The main job: impacts simulated by the engine -> fitted scaling constants -> the SCI cohesion, "
+      "crater-formation rates and model ages per cohesion");
+  sub->add_option("--out", options->out, "Folder of the runs and results (report.md, summary.json, fit.json)")
+      ->capture_default_str();
+  sub->add_flag("--full", options->full,
+                "Run the whole shipped cohesion x size study live (about 20 runs) and fit it");
+  sub->add_option("--study", options->study, "Run this study (docs/sweep.md) live and fit its craters");
+  sub->add_option("--jobs", options->jobs, "Runs at once (default: the cores, at most the runs)");
+  sub->add_option("--threads", options->threads, "OpenMP threads per run (default: cores / jobs)");
+  sub->add_flag("--json", options->json, "Print summary.json instead of the report");
+  sub->footer(
+      "Runs finished by an earlier main job in the same --out are reused. Default: two runs of "
+      "data/studies/cohesion_size_coarse.toml, checked against its shipped table data/radii/"
+      "cohesion_size_coarse.csv, which the fit then uses.");
   sub->callback([options] { run_main_job(*options); });
 }
 

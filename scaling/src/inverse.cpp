@@ -1,8 +1,9 @@
-// Inverse problems of the point-source law: the impactor radius or the impact speed that makes a given
-// crater radius. Both are one-dimensional roots of a strictly increasing function of the log of the
-// unknown (d ln R / d ln a = 1 - mu/(2+mu) * gravity share > 0; R grows with U because both pi2 and pi3
-// fall with U), so a root exists for every R > 0 whenever gravity or strength is > 0. It is bracketed by
-// stepping outwards in ln(unknown) with doubling steps and then polished by GSL's Brent solver.
+// Inverse problems of the point-source law: the impactor radius, the impact speed or the target strength that
+// makes a given crater radius. Each is a one-dimensional root of a strictly monotonic function of the log of
+// the unknown (d ln R / d ln a = 1 - mu/(2+mu) * gravity share > 0; R grows with U because both pi2 and pi3
+// fall with U; R falls with Y because pi3 grows with it), so a root exists for every R > 0 whenever gravity
+// or strength is > 0; for the strength, only for R below the gravity-regime radius (Y = 0). It is bracketed
+// by stepping outwards in ln(unknown) with doubling steps and then polished by GSL's Brent solver.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -121,6 +122,29 @@ double solve_velocity(const ScalingLaw& law, double crater_radius_target, const 
     return std::log(scaling::crater_radius(law, probe, target)) - ln_target;
   };
   return std::exp(solve_increasing(f, std::log(1000.0), "impact velocity"));
+}
+
+double solve_strength(const ScalingLaw& law, double crater_radius_target, const Impactor& impactor,
+                      const Target& target) {
+  check_crater_radius(crater_radius_target);
+  Target gravity_only = target;
+  gravity_only.strength = 0.0;
+  const double gravity_radius = scaling::crater_radius(law, impactor, gravity_only);  // validates the inputs
+  if (!(crater_radius_target < gravity_radius)) {
+    throw InputError("crater radius = " + format_number(crater_radius_target) +
+                     " m is not reached by any strength: it must be below the cohesionless (gravity-regime) "
+                     "radius " +
+                     format_number(gravity_radius) + " m of this impact");
+  }
+  const double ln_target = std::log(crater_radius_target);
+  const auto f = [&](double ln_y) {  // increasing in ln Y: R falls as Y grows
+    Target probe = target;
+    probe.strength = std::exp(ln_y);
+    return ln_target - std::log(scaling::crater_radius(law, impactor, probe));
+  };
+  // Start at the strength of the target's pi3 = 1e-4 (a typical boundary of the two regimes).
+  const double start = std::log(1e-4 * target.density * impactor.velocity * impactor.velocity);
+  return std::exp(solve_increasing(f, start, "target strength"));
 }
 
 }  // namespace craterkit::scaling

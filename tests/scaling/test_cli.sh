@@ -171,20 +171,6 @@ expect_status 2 "friction=0.8,porosity=0.5,resolution=18" scale --fit "$WORK/gro
   "${IMPACT[@]}"
 expect_status 2 "--group" scale --fit "$WORK/fit.json" --group friction=0.8 --impactor-radius 0.1 "${IMPACT[@]}"
 
-# run: text, JSON and --out
-expect_status 0 "" run --out "$WORK/run"
-[ -s "$WORK/run/scaling_fit.json" ] && [ -s "$WORK/run/sci_example.json" ] || fail "run --out did not write its files"
-expect_status 0 "" run --json
-$PY - "$WORK/out" <<'PYEOF' || fail "run --json is not the expected object"
-import json, sys
-d = json.load(open(sys.argv[1]))
-rows = d["sci_example"]["cohesions"]
-assert rows[0]["strength"] == 0.05
-assert abs(rows[0]["crater_radius"] - 7.25) < 0.8
-assert "parameters" in d["scaling_fit"]
-PYEOF
-: >"$WORK/file"
-expect_status 2 "--out" run --out "$WORK/file"
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed"

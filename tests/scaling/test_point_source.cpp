@@ -177,6 +177,25 @@ TEST(PointSource, InverseRoundTripsToImpactorRadiusAndVelocity) {
   EXPECT_NEAR(cs::crater_radius(ryugu(), check, ryugu_target(0.05)), 7.25, 7.25e-9);
 }
 
+TEST(PointSource, InverseRoundTripsToStrength) {
+  for (const auto& law : {ryugu(), cs::convert(ryugu(), cs::Form::holsapple)}) {
+    for (double strength : {1e-3, 0.05, 5.0, 5e4}) {
+      const double crater = cs::crater_radius(law, sci_impactor(), ryugu_target(strength));
+      EXPECT_NEAR(cs::solve_strength(law, crater, sci_impactor(), ryugu_target(0.0)) / strength, 1.0, 1e-9)
+          << "strength " << strength;
+    }
+  }
+  // The cohesionless radius and anything larger cannot be made by a strength: named in the error.
+  const double gravity_radius = cs::crater_radius(ryugu(), sci_impactor(), ryugu_target(0.0));
+  try {
+    cs::solve_strength(ryugu(), gravity_radius, sci_impactor(), ryugu_target(0.0));
+    FAIL() << "no error";
+  } catch (const craterkit::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("gravity-regime"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(cs::solve_strength(ryugu(), -1.0, sci_impactor(), ryugu_target(0.0)), craterkit::InputError);
+}
+
 TEST(PointSource, InverseReportsImpossibleProblems) {
   EXPECT_THROW(cs::solve_impactor_radius(ryugu(), 0.0, sci_impactor(), ryugu_target(0.05)),
                craterkit::InputError);

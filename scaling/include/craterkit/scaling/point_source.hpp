@@ -83,10 +83,13 @@ Regime regime(const ScalingLaw& law, const Impactor& impactor, const Target& tar
 
 // Inverse problems (GSL root finding with bracketing). Throw craterkit::InputError with a message
 // that says why when no solution exists (e.g. a crater radius the law cannot produce at this speed).
-// impactor.radius is ignored by solve_impactor_radius; impactor.velocity by solve_velocity.
+// impactor.radius is ignored by solve_impactor_radius; impactor.velocity by solve_velocity; target.strength
+// by solve_strength, which needs a crater radius below the impact's gravity-regime (Y = 0) radius.
 double solve_impactor_radius(const ScalingLaw& law, double crater_radius, const Impactor& impactor,
                              const Target& target);
 double solve_velocity(const ScalingLaw& law, double crater_radius, const Impactor& impactor,
+                      const Target& target);
+double solve_strength(const ScalingLaw& law, double crater_radius, const Impactor& impactor,
                       const Target& target);
 
 // Throws InputError unless both coefficients > 0, mu > 0 and nu >= 0 (the fit, not this check,
