@@ -4,7 +4,6 @@
 // scripts/plot_age.py.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -15,8 +14,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include "command_registry.hpp"
@@ -32,6 +29,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "law_uncertainty_flags.hpp"
 #include "production_flags.hpp"
+#include "python_plot.hpp"
 #include "scaling_flags.hpp"
 
 namespace {
@@ -53,49 +51,6 @@ struct AgeOptions {
   bool json = false;
 };
 
-// Runs /usr/bin/python3 with arguments (no shell); returns its exit status.
-int run_python(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  std::string python = "/usr/bin/python3";
-  argv.push_back(python.data());
-  std::vector<std::string> copy = args;
-  for (auto& a : copy) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("cannot start /usr/bin/python3 (fork failed)");
-  if (pid == 0) {
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  if (waitpid(pid, &status, 0) < 0) throw std::runtime_error("waiting for /usr/bin/python3 failed");
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
-}
-
-std::filesystem::path plot_script() {
-  if (const char* env = std::getenv("CRATERKIT_PLOT_AGE_SCRIPT"); env != nullptr && *env != '\0') return env;
-  // Source tree: <repo>/data and <repo>/scripts; an installation may put scripts/ inside the data directory.
-  const auto data = craterkit::data_directory();
-  const auto beside = data.parent_path() / "scripts" / "plot_age.py";
-  return std::filesystem::exists(beside) ? beside : data / "scripts" / "plot_age.py";
-}
-
-// Checks python + matplotlib before any computation, so that a missing plotting stack fails early.
-void check_plotting_available(const std::filesystem::path& script) {
-  if (!std::filesystem::exists("/usr/bin/python3")) {
-    throw std::runtime_error(
-        "--plot needs /usr/bin/python3 with matplotlib, and /usr/bin/python3 does not exist");
-  }
-  if (!std::filesystem::exists(script)) {
-    throw std::runtime_error("--plot: plotting script " + script.string() +
-                             " not found (set CRATERKIT_PLOT_AGE_SCRIPT to scripts/plot_age.py)");
-  }
-  if (run_python({"-c", "import matplotlib"}) != 0) {
-    throw std::runtime_error(
-        "--plot needs matplotlib for /usr/bin/python3 (Debian: python3-matplotlib); no figure written");
-  }
-}
-
 std::vector<double> downsample(const std::vector<double>& v, std::size_t n) {
   if (v.size() <= n) return v;
   std::vector<double> out;
@@ -112,8 +67,10 @@ void run_age(const AgeOptions& o) {
     if (!std::filesystem::is_directory(dir)) {
       throw InputError("--plot " + *o.plot + ": directory " + dir.string() + " does not exist");
     }
-    script = plot_script();
-    check_plotting_available(script);
+    script = craterkit::cli::plot_script("plot_age.py", "CRATERKIT_PLOT_AGE_SCRIPT");
+    if (const auto why = craterkit::cli::plotting_unavailable(script, "CRATERKIT_PLOT_AGE_SCRIPT");
+        !why.empty())
+      throw std::runtime_error("--plot: " + why + "; no figure written");
   }
   auto inputs = craterkit::cli::resolve_scaling_flags(o.scaling);
   const ck::Body body = ck::load_body(o.production.body);
@@ -251,7 +208,7 @@ void run_age(const AgeOptions& o) {
     const std::filesystem::path png(*o.plot);
     const auto data_path = craterkit::temporary_sibling(png).string() + ".json";
     craterkit::write_text_atomically(data_path, out.dump());
-    const int status = run_python({script.string(), data_path, png.string()});
+    const int status = craterkit::cli::run_python({script.string(), data_path, png.string()});
     std::error_code ignored;
     std::filesystem::remove(data_path, ignored);
     if (status != 0)

@@ -25,6 +25,7 @@
 #include "craterkit/study/sweep.hpp"
 #include "craterkit_version.hpp"
 #include "main_job_stages.hpp"
+#include "python_plot.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -92,6 +93,27 @@ scaling::RadiiTable run_simulations(const std::filesystem::path& study_file, con
   return scaling::read_radii_csv(sweep.tables.radii_csv);
 }
 
+// Draws DIR/main_job.png from DIR/summary.json (scripts/plot_main_job.py) and returns its file name, or
+// returns why there is no figure, prefixed with "no figure: " (the numbers do not depend on it).
+std::string draw_figure(const std::filesystem::path& dir) {
+  constexpr const char* kOverride = "CRATERKIT_PLOT_MAIN_JOB_SCRIPT";
+  const auto script = plot_script("plot_main_job.py", kOverride);
+  if (auto why = plotting_unavailable(script, kOverride); !why.empty()) return "no figure: " + why;
+  const int status =
+      run_python({script.string(), (dir / "summary.json").string(), (dir / "main_job.png").string()});
+  if (status != 0) return fmt::format("no figure: plot_main_job.py failed (exit status {})", status);
+  return "main_job.png";
+}
+
+std::string figure_note(const std::string& figure) {
+  if (figure != "main_job.png") return "\n" + figure + "\n";
+  return "\n![the main job's figure](" + figure +
+         ")\n\n(a) the engine's craters as pi_R against pi_2 with the "
+         "fitted law per cohesion and the published law without cohesion; (b) the SCI crater against "
+         "cohesion "
+         "with the observed band; (c) rates relative to 1 Pa; (d) model ages.\n";
+}
+
 void run_main_job(const MainJobOptions& o) {
   check_options(o);
   const bool default_study = !o.full && !o.study;
@@ -119,14 +141,15 @@ void run_main_job(const MainJobOptions& o) {
   const std::filesystem::path dir(o.out);
   write_text_atomically(dir / "fit.json", fit_json.dump(2) + "\n");
   write_text_atomically(dir / "summary.json", summary.dump(2) + "\n");
-  write_text_atomically(dir / "report.md", report);
+  const std::string figure = draw_figure(dir);
+  write_text_atomically(dir / "report.md", report + figure_note(figure));
   if (o.json) {
     std::cout << summary.dump(2) << "\n";
     return;
   }
-  std::cout << report;
-  fmt::print("\nwritten: {}, {}, {}\n", (dir / "report.md").string(), (dir / "summary.json").string(),
-             (dir / "fit.json").string());
+  std::cout << report << figure_note(figure);
+  fmt::print("\nwritten: {}, {}, {}{}\n", (dir / "report.md").string(), (dir / "summary.json").string(),
+             (dir / "fit.json").string(), figure == "main_job.png" ? ", " + (dir / figure).string() : "");
 }
 
 void add_run_command(CLI::App& parent) {

@@ -24,7 +24,7 @@ TOMLEOF
 
 "$CK" run --study "$WORK/chain.toml" --out "$WORK/out" --jobs 2 --threads 1 >"$WORK/report.txt" 2>"$WORK/err" ||
   fail "the main job exited $?: $(tail -5 "$WORK/err")"
-for f in report.md summary.json fit.json sweep/radii.csv; do
+for f in report.md summary.json fit.json sweep/radii.csv main_job.png; do
   [ -s "$WORK/out/$f" ] || fail "the main job did not write $f"
 done
 grep -q "## Model ages" "$WORK/report.txt" || fail "the printed report has no ages section"
