@@ -30,6 +30,7 @@
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "json_output.hpp"
 #include "law_uncertainty_flags.hpp"
 #include "production_flags.hpp"
 #include "scaling_flags.hpp"
@@ -262,7 +263,7 @@ void run_age(const AgeOptions& o) {
     for (auto& a : out["ages"]) {
       a.erase("isochron");  // figure data stays out of the printed JSON unless asked for
     }
-    std::cout << out.dump(2) << "\n";
+    craterkit::cli::print_json(out);
     return;
   }
   std::cout << fmt::format(

@@ -24,6 +24,7 @@
 #include "craterkit/scaling/fit_json.hpp"
 #include "craterkit/scaling/radii_table.hpp"
 #include "fit_report.hpp"
+#include "json_output.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -138,7 +139,7 @@ void run_main_job(const RunOptions& options) {
       fmt::print("written: {}, {}\n", (dir / "sci_example.json").string(),
                  (dir / "scaling_fit.json").string());
   }
-  if (options.json) std::cout << nlohmann::json{{"sci_example", sci}, {"scaling_fit", fit}}.dump(2) << "\n";
+  if (options.json) craterkit::cli::print_json(nlohmann::json{{"sci_example", sci}, {"scaling_fit", fit}});
 }
 
 void add_run_command(CLI::App& parent) {
