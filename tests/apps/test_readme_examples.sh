@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Runs every `$K ...` example of README.md's quick tour as printed, in a scratch folder where data/ is the
+# source tree's data, with K the built program; each must exit with status 0. The examples of
+# `simulate` and `sweep` (minutes to hours of SPH) run with --dry-run appended, which reads and checks
+# the configuration and the flags exactly as printed and stops before simulating.
+# Also checks a few of the promises the README makes around the examples (list, JSON version, simulate's
+# default output folder).
+# Usage: test_readme_examples.sh /path/to/craterkit /path/to/README.md /path/to/data
+set -u
+CK="$1"
+README="$2"
+DATA="$3"
+WORK=$(mktemp -d)
+trap 'rm -rf "$WORK"' EXIT
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+ln -s "$DATA" "$WORK/data"
+cd "$WORK" || exit 1
+
+# The example lines: inside the first ```sh block after "## A quick tour".
+mapfile -t examples < <(awk '/^## A quick tour/ {tour = 1} tour && /^```sh/ {inside = 1; next}
+                             inside && /^```/ {exit} inside && /^\$K / {print}' "$README")
+[ "${#examples[@]}" -ge 8 ] || fail "found only ${#examples[@]} examples in $README"
+export MPLBACKEND=Agg OMP_NUM_THREADS=1
+for line in "${examples[@]}"; do
+  command=${line%%#*}  # the trailing comment
+  case "$command" in
+    "\$K simulate "* | "\$K sweep "*) command="$command --dry-run" ;;
+  esac
+  echo "== $command"
+  K="$CK"
+  if ! eval "$command" >"$WORK/out" 2>"$WORK/err"; then
+    fail "README example '$line' failed: $(cat "$WORK/err")"
+  fi
+done
+# What the examples write (fit.json is read by the next example, age.png is the age plot).
+[ -s fit.json ] || fail "the fit example wrote no fit.json"
+[ -s age.png ] || fail "the age example wrote no age.png"
+
+# craterkit list: every kind, with the data directory in use.
+"$CK" list >"$WORK/out" 2>"$WORK/err" || fail "craterkit list failed: $(cat "$WORK/err")"
+for word in jutzi2022_ryugu ryugu basalt power_law_q4 example "citation:" "data directory:"; do
+  grep -q -- "$word" "$WORK/out" || fail "craterkit list does not show '$word'"
+done
+"$CK" list bodies --json >"$WORK/out" 2>"$WORK/err" || fail "craterkit list bodies --json failed"
+/usr/bin/python3 - "$WORK/out" <<'PYEOF' || fail "craterkit list bodies --json is not as documented"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["craterkit_version"], d
+assert [b["name"] for b in d["bodies"]] == ["bennu", "ryugu"], d
+assert all(b["citation"] and b["source"].endswith(".toml") for b in d["bodies"]), d
+assert "constant_sets" not in d, d
+PYEOF
+"$CK" list planets >"$WORK/out" 2>"$WORK/err" && fail "craterkit list planets succeeded"
+
+# scale --body takes the gravity from the body; the JSON says which version made it.
+"$CK" scale --params jutzi2022_ryugu --body ryugu --impactor-radius 0.056 --impactor-density 2700 \
+  --velocity 2000 --json >"$WORK/out" || fail "scale --body failed"
+/usr/bin/python3 - "$WORK/out" <<'PYEOF' || fail "scale --body --json is not as documented"
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["body"] == "Ryugu" and abs(d["gravity"] - 1.496e-4) < 1e-12, d
+assert d["target_density"] == 1190.0, d  # the body's density, as in rates and age
+assert d["craterkit_version"] and d["scaling_law"]["coefficient_1"] == 0.6, d
+PYEOF
+
+# simulate without --out names the folder it writes (here a dry run writes nothing and names none).
+"$CK" simulate data/examples/sod.toml --dry-run >"$WORK/out" 2>"$WORK/err" || fail "simulate --dry-run failed"
+grep -q "no --out" "$WORK/err" && fail "a dry run should not announce an output folder"
+
+if [ "$failures" -ne 0 ]; then
+  echo "$failures failure(s)"
+  exit 1
+fi
+echo "all README examples ran"
