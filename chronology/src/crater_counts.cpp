@@ -1,9 +1,11 @@
 #include "craterkit/chronology/crater_counts.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
+#include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "text_table.hpp"
@@ -216,6 +218,36 @@ CraterCounts read_crater_counts(const std::string& path) {
                      "' is not known; allowed: .csv, .diam, .scc");
   validate(c);
   return c;
+}
+
+namespace {
+std::string exact(double value) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+}  // namespace
+
+std::string format_crater_csv(const CraterCounts& counts) {
+  validate(counts);
+  std::ostringstream out;
+  out << "# crater counts written by craterkit";
+  if (!counts.source.empty()) out << " from " << counts.source;
+  out << "\n# area_m2 = " << exact(counts.area) << "\n";
+  if (counts.binned()) {
+    out << "diameter_m,cumulative_count\n";
+    for (const auto& bin : counts.bins)
+      out << exact(bin.diameter) << "," << exact(bin.cumulative_count) << "\n";
+  } else {
+    out << "diameter_m,fraction\n";
+    for (std::size_t i = 0; i < counts.diameters.size(); ++i)
+      out << exact(counts.diameters[i]) << "," << exact(counts.fractions[i]) << "\n";
+  }
+  return out.str();
+}
+
+void write_crater_csv(const CraterCounts& counts, const std::string& path) {
+  write_text_atomically(path, format_crater_csv(counts));
 }
 
 }  // namespace craterkit::chronology

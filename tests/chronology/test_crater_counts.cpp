@@ -115,3 +115,32 @@ TEST(CraterCounts, ShippedSyntheticUnitIsTheSameInAllFormats) {
     }
   }
 }
+
+TEST(CraterCounts, WrittenCsvReadsBackExactly) {
+  ck::CraterCounts unbinned;
+  unbinned.source = "test";
+  unbinned.area = 812345.678;
+  unbinned.diameters = {12.345678901234567, 40.0, 1.0 / 3.0};
+  unbinned.fractions = {1.0, 0.5, 0.25};
+  const auto path = std::filesystem::temp_directory_path() / "ck_counts_written.csv";
+  ck::write_crater_csv(unbinned, path.string());
+  const auto back = ck::read_crater_counts(path.string());
+  EXPECT_EQ(back.area, unbinned.area);
+  EXPECT_EQ(back.diameters, unbinned.diameters);
+  EXPECT_EQ(back.fractions, unbinned.fractions);
+
+  ck::CraterCounts binned;
+  binned.area = 2.7e6;
+  binned.bins = {{10.0, 120.0}, {20.0, 77.0}, {40.0, 9.5}};
+  ck::write_crater_csv(binned, path.string());
+  const auto bins = ck::read_crater_counts(path.string());
+  ASSERT_EQ(bins.bins.size(), 3u);
+  EXPECT_EQ(bins.bins[2].diameter, 40.0);
+  EXPECT_EQ(bins.bins[2].cumulative_count, 9.5);
+  EXPECT_EQ(bins.area, 2.7e6);
+
+  ck::CraterCounts bad = unbinned;
+  bad.area = 0.0;
+  EXPECT_THROW(ck::write_crater_csv(bad, path.string()), craterkit::InputError);
+  std::filesystem::remove(path);
+}

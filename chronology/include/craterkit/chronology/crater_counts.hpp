@@ -35,4 +35,11 @@ CraterCounts read_crater_csv(const std::string& path);
 CraterCounts read_craterstats_diam(const std::string& path);
 CraterCounts read_crater_tools_scc(const std::string& path);
 
+// The counts as a craterkit .csv (the format read_crater_csv reads back exactly): '#' comment lines with
+// the source and "area_m2 = X", then diameter_m,fraction (unbinned) or diameter_m,cumulative_count
+// (binned), every number with 17 significant digits. Validates the counts first (InputError).
+std::string format_crater_csv(const CraterCounts& counts);
+// Writes format_crater_csv(counts) to `path` atomically.
+void write_crater_csv(const CraterCounts& counts, const std::string& path);
+
 }  // namespace craterkit::chronology
