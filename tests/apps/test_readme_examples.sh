@@ -5,11 +5,15 @@
 # the configuration and the flags exactly as printed and stops before simulating.
 # Also checks a few of the promises the README makes around the examples (list, JSON version, simulate's
 # default output folder).
-# Usage: test_readme_examples.sh /path/to/craterkit /path/to/README.md /path/to/data
+# With a fourth argument (the folder of the built Python package), the README's Python block and the Python
+# blocks of docs/python.md (one script, in order) run too, with /usr/bin/python3.
+# Usage: test_readme_examples.sh /path/to/craterkit /path/to/README.md /path/to/data [/path/to/python]
 set -u
-CK="$1"
-README="$2"
-DATA="$3"
+CK=$(realpath "$1")
+README=$(realpath "$2")
+DATA=$(realpath "$3")
+PYTHON_PACKAGE="${4:-}"
+[ -n "$PYTHON_PACKAGE" ] && PYTHON_PACKAGE=$(realpath -m "$PYTHON_PACKAGE")
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 failures=0
@@ -67,6 +71,18 @@ PYEOF
 # simulate without --out names the folder it writes (here a dry run writes nothing and names none).
 "$CK" simulate data/examples/sod.toml --dry-run >"$WORK/out" 2>"$WORK/err" || fail "simulate --dry-run failed"
 grep -q "no --out" "$WORK/err" && fail "a dry run should not announce an output folder"
+
+if [ -n "$PYTHON_PACKAGE" ]; then
+  python_blocks() { awk '/^```python/ {inside = 1; next} inside && /^```/ {inside = 0} inside {print}' "$1"; }
+  python_blocks "$README" >readme.py
+  [ -s readme.py ] || fail "README.md has no Python example"
+  PYTHONPATH="$PYTHON_PACKAGE" /usr/bin/python3 readme.py >"$WORK/out" 2>"$WORK/err" ||
+    fail "README's Python example failed: $(cat "$WORK/err")"
+  python_blocks "$(dirname "$README")/docs/python.md" >python_md.py
+  PYTHONPATH="$PYTHON_PACKAGE" /usr/bin/python3 python_md.py >"$WORK/out" 2>"$WORK/err" ||
+    fail "docs/python.md's examples failed: $(cat "$WORK/err")"
+  [ -s unit.csv ] || fail "docs/python.md's example wrote no unit.csv"
+fi
 
 if [ "$failures" -ne 0 ]; then
   echo "$failures failure(s)"
