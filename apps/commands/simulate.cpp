@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -175,6 +177,13 @@ void run_simulate(const SimulateOptions& given) {
   run.output_directory = options.out;
   run.resume = options.resume;
   run.progress = !options.quiet;
+  {
+    // The configuration as written, kept in every snapshot and checkpoint (attribute `configuration`).
+    std::ifstream in(options.config, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    run.configuration = text.str();
+  }
   if (setup == "impact") {
     const impact::ImpactConfig config = impact::parse_impact_config(root);
     if (options.dry_run) {
