@@ -21,6 +21,7 @@
 
 #include "command_registry.hpp"
 #include "craterkit/chronology/body.hpp"
+#include "craterkit/chronology/chronology_system.hpp"
 #include "craterkit/chronology/crater_counts.hpp"
 #include "craterkit/chronology/law_propagation.hpp"
 #include "craterkit/chronology/model_age.hpp"
@@ -49,7 +50,11 @@ struct AgeOptions {
   std::optional<double> min_diameter;
   std::optional<double> max_diameter;
   std::optional<double> equilibrium;
+  std::string fractions = "weight";  // --fractions weight|whole
+  // --chronology NAME|FILE: a published chronology system instead of the scaling law.
+  std::optional<std::string> chronology;
   std::optional<std::string> plot;
+  std::string prior = "age";  // --prior age|density (with --chronology)
   craterkit::cli::LawUncertaintyFlags uncertainty;
   bool json = false;
 };
@@ -104,6 +109,85 @@ std::vector<double> downsample(const std::vector<double>& v, std::size_t n) {
   return out;
 }
 
+// The fit range and conventions shared by both kinds of production.
+ck::AgeFitOptions fit_options(const AgeOptions& o) {
+  ck::AgeFitOptions fit;
+  if (o.min_diameter) {
+    if (!(*o.min_diameter > 0.0))
+      throw InputError(fmt::format("--min-diameter {} must be > 0 m", *o.min_diameter));
+    fit.min_diameter = *o.min_diameter;
+  }
+  if (o.max_diameter) fit.max_diameter = *o.max_diameter;
+  fit.weight_by_fraction = o.fractions == "weight";
+  if (o.equilibrium) {
+    fit.cap.enabled = true;
+    fit.cap.fraction_of_geometric = *o.equilibrium;
+    ck::validate(fit.cap);
+  }
+  return fit;
+}
+
+// --chronology: one age from a published chronology system (production polynomial and N(1)(t)), the way
+// crater-counting tools date a count; the scaling law, cohesion and body play no part.
+void run_age_chronology(const AgeOptions& o) {
+  const auto& s = o.scaling;
+  const bool law_flags = s.params || s.fit_file || s.group || s.K1 || s.K2 || s.H1 || s.H2 || s.mu || s.nu ||
+                         s.gravity || s.target_density || s.impactor_density || s.velocity || s.strength;
+  if (law_flags || !o.cohesion.empty() || o.plot) {
+    throw InputError("--chronology " + *o.chronology +
+                     " dates the count with that system's production and chronology functions: it takes no "
+                     "scaling-law flag (--params, --fit, --K1 ..., --velocity, ...), and no --cohesion "
+                     "or --plot");
+  }
+  const auto system = ck::load_chronology_system(*o.chronology);
+  const ck::CraterCounts counts = ck::read_crater_counts(o.counts);
+  ck::AgeFitOptions fit = fit_options(o);
+  fit.clock = ck::chronology_clock(system);
+  fit.prior_uniform_in_density = o.prior == "density";
+  const auto est = ck::fit_model_age(counts, ck::chronology_production(system), fit);
+  nlohmann::json age = {{"chronology", system.name},
+                        {"median_yr", est.median},
+                        {"mode_yr", est.mode},
+                        {"sigma1_yr", {est.sigma1_low, est.sigma1_high}},
+                        {"sigma2_yr", {est.sigma2_low, est.sigma2_high}},
+                        {"reaches_max_age", est.reaches_max_age},
+                        {"cumulative_fit_age_yr", est.cumulative_fit_age},
+                        {"cumulative_fit_sigma_yr", est.cumulative_fit_sigma},
+                        {"craters_in_range", est.craters_in_range},
+                        {"fit_min_diameter", est.min_diameter},
+                        {"fit_max_diameter", std::isinf(est.max_diameter) ? nlohmann::json(nullptr)
+                                                                          : nlohmann::json(est.max_diameter)},
+                        {"n1_at_median_per_km2", ck::n1(system, est.median)}};
+  if (o.json) {
+    nlohmann::json out;
+    out["counts"] = {{"source", counts.source},
+                     {"area_km2", counts.area * 1e-6},
+                     {"binned", counts.binned()},
+                     {"buffered", counts.buffered}};
+    out["chronology_system"] = {
+        {"name", system.name}, {"title", system.title}, {"body", system.body}, {"citation", system.citation}};
+    out["conventions"] = {
+        {"fractions", o.fractions},
+        {"equilibrium_fraction",
+         fit.cap.enabled ? nlohmann::json(fit.cap.fraction_of_geometric) : nlohmann::json(nullptr)},
+        {"prior", fmt::format("uniform in {} on [0, {:g}] yr",
+                              o.prior == "density" ? "crater density" : "age", fit.max_age)}};
+    out["ages"] = nlohmann::json::array({age});
+    craterkit::cli::print_json(out);
+    return;
+  }
+  std::cout << fmt::format("# craterkit age: {} ({:.4g} km^2), chronology system {} ({})\n", counts.source,
+                           counts.area * 1e-6, system.title, system.name);
+  std::cout << fmt::format("{:>8} {:>12} {:>25} {:>25} {:>20}\n", "N_fit", "median_Myr", "1-sigma_Myr",
+                           "2-sigma_Myr", "cumulative_fit_Myr");
+  std::cout << fmt::format(
+      "{:>8.4g} {:>12.4g} {:>25} {:>25} {:>20}{}\n", est.craters_in_range, est.median / 1e6,
+      fmt::format("[{:.4g}, {:.4g}]", est.sigma1_low / 1e6, est.sigma1_high / 1e6),
+      fmt::format("[{:.4g}, {:.4g}]", est.sigma2_low / 1e6, est.sigma2_high / 1e6),
+      fmt::format("{:.4g} +- {:.2g}", est.cumulative_fit_age / 1e6, est.cumulative_fit_sigma / 1e6),
+      est.reaches_max_age ? "  (density reaches the maximum age: a lower bound)" : "");
+}
+
 void run_age(const AgeOptions& o) {
   std::filesystem::path script;
   if (o.plot) {
@@ -116,6 +200,14 @@ void run_age(const AgeOptions& o) {
     script = plot_script();
     check_plotting_available(script);
   }
+  if (o.chronology) {
+    run_age_chronology(o);
+    return;
+  }
+  if (o.prior != "age") {
+    throw InputError("--prior " + o.prior +
+                     " needs --chronology: with the scaling law's constant flux both priors are the same");
+  }
   auto inputs = craterkit::cli::resolve_scaling_flags(o.scaling);
   const ck::Body body = ck::load_body(o.production.body);
   craterkit::cli::check_cohesions(o.cohesion);
@@ -125,18 +217,7 @@ void run_age(const AgeOptions& o) {
                                                               ck::load_population(o.population));
   const auto region = ck::collision_region_from_string(o.production.region);
 
-  ck::AgeFitOptions fit;
-  if (o.min_diameter) {
-    if (!(*o.min_diameter > 0.0))
-      throw InputError(fmt::format("--min-diameter {} must be > 0 m", *o.min_diameter));
-    fit.min_diameter = *o.min_diameter;
-  }
-  if (o.max_diameter) fit.max_diameter = *o.max_diameter;
-  if (o.equilibrium) {
-    fit.cap.enabled = true;
-    fit.cap.fraction_of_geometric = *o.equilibrium;
-    ck::validate(fit.cap);
-  }
+  const ck::AgeFitOptions fit = fit_options(o);
 
   craterkit::scaling::Target target;
   target.density = o.scaling.target_density.value_or(body.bulk_density);
@@ -234,6 +315,7 @@ void run_age(const AgeOptions& o) {
       {"cross_section", o.production.cross_section},
       {"equilibrium_fraction",
        fit.cap.enabled ? nlohmann::json(fit.cap.fraction_of_geometric) : nlohmann::json(nullptr)},
+      {"fractions", o.fractions},
       {"prior", fmt::format("uniform in age on [0, {:g}] yr", fit.max_age)}};
   nlohmann::json warnings = nlohmann::json::array();
   if (setup.population.approximate) {
@@ -315,8 +397,17 @@ void add_age_command(CLI::App& parent) {
   craterkit::cli::add_law_uncertainty_flags(*sub, o->uncertainty);
   sub->add_option("--cohesion", o->cohesion,
                   "Cohesions Y of the scaling law, Pa (comma-separated); one age each")
-      ->delimiter(',')
-      ->required();
+      ->delimiter(',');
+  sub->add_option(
+         "--prior", o->prior,
+         "With --chronology: the prior is uniform in age, or in crater density (density: proportional to "
+         "the flux, as craterstats)")
+      ->check(CLI::IsMember({"age", "density"}))
+      ->capture_default_str();
+  sub->add_option(
+      "--chronology", o->chronology,
+      "Date with a published chronology system instead of the scaling law (data/chronology/NAME, "
+      "e.g. moon_neukum2001, mars_neukum_ivanov2001, or a file): no law flags and no --cohesion then");
   sub->add_option("--population", o->population, "Impactor population in data/populations/ or a .toml file")
       ->capture_default_str();
   sub->add_option("--min-diameter", o->min_diameter,
@@ -325,6 +416,12 @@ void add_age_command(CLI::App& parent) {
   sub->add_option("--equilibrium", o->equilibrium,
                   "Cap counts at equilibrium: this fraction of the geometric saturation 1.54 D^-2 (Gault "
                   "1970), e.g. 0.05");
+  sub->add_option(
+         "--fractions", o->fractions,
+         "How a crater's fraction (buffered counts) enters the Poisson likelihood: weight (it counts f) "
+         "or whole (it counts 1, as craterstats' Poisson fit)")
+      ->check(CLI::IsMember({"weight", "whole"}))
+      ->capture_default_str();
   sub->add_option("--plot", o->plot,
                   "Write the standard figure (cumulative SFD with isochrons, age densities) to this PNG");
   sub->add_flag("--json", o->json, "Print JSON instead of a table");

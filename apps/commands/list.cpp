@@ -12,6 +12,7 @@
 
 #include "command_registry.hpp"
 #include "craterkit/chronology/body.hpp"
+#include "craterkit/chronology/chronology_system.hpp"
 #include "craterkit/chronology/population.hpp"
 #include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/data_path.hpp"
@@ -42,6 +43,7 @@ const std::vector<Category>& categories() {
       {"bodies", "bodies", "target bodies (--body NAME)"},
       {"materials", "materials", "materials (material = \"NAME\" in a configuration)"},
       {"populations", "populations", "impactor populations (--population NAME)"},
+      {"chronology-systems", "chronology", "chronology systems (craterkit age --chronology NAME)"},
       {"studies", "studies", "studies (craterkit sweep FILE)"},
   };
   return all;
@@ -69,6 +71,10 @@ Entry describe(const Category& category, const std::string& name) {
     const auto population = chronology::load_population(name);
     entry.description = population.notes + (population.approximate ? " (approximate shape)" : "");
     entry.citation = population.citation;
+  } else if (kind == "chronology-systems") {
+    const auto system = chronology::load_chronology_system(name);
+    entry.description = system.title + " (" + system.body + ")";
+    entry.citation = system.citation;
   } else if (kind == "materials") {
     auto table = TomlTable::parse_file(entry.file);
     entry.description = optional_text(table, "description");
@@ -137,8 +143,9 @@ void add_list_command(CLI::App& parent) {
       "files and citations");
   std::vector<std::string> names;
   for (const auto& c : categories()) names.emplace_back(c.name);
-  sub->add_option("what", options->category,
-                  "Only this kind: constant-sets, bodies, materials, populations, studies")
+  sub->add_option(
+         "what", options->category,
+         "Only this kind: constant-sets, bodies, materials, populations, chronology-systems, studies")
       ->check(CLI::IsMember(names));
   sub->add_flag("--json", options->json, "Print a JSON object instead of text");
   sub->footer("The data directory is CRATERKIT_DATA_DIR when set, else the installation's share/craterkit.");

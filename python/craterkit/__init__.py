@@ -12,6 +12,7 @@ import os as _os
 from ._craterkit import (
     AgeEstimate,
     Body,
+    ChronologySystem,
     ConstantSet,
     CraterCounts,
     FitResult,
@@ -19,6 +20,7 @@ from ._craterkit import (
     Production,
     ScalingLaw,
     body_names,
+    chronology_system_names,
     constant_set_names,
     crater_radius,
     data_directory,
@@ -26,6 +28,7 @@ from ._craterkit import (
     impact_velocity,
     impactor_radius,
     load_body,
+    load_chronology_system,
     load_constant_set,
     load_fit,
     load_population,
@@ -42,9 +45,9 @@ from . import _craterkit
 __version__ = "@PROJECT_VERSION@"
 
 __all__ = [
-    "AgeEstimate", "Body", "ConstantSet", "CraterCounts", "FitResult", "Population", "Production", "ScalingLaw",
-    "body_names", "constant_set_names", "crater_radius", "data_directory", "fit", "gravity_limit_radius",
-    "impact_velocity", "impactor_radius", "law", "load_body", "load_constant_set", "load_fit", "load_population",
+    "AgeEstimate", "Body", "ChronologySystem", "ConstantSet", "CraterCounts", "FitResult", "Population", "Production", "ScalingLaw",
+    "body_names", "chronology_system_names", "constant_set_names", "crater_radius", "data_directory", "fit", "gravity_limit_radius",
+    "impact_velocity", "impactor_radius", "law", "load_body", "load_chronology_system", "load_constant_set", "load_fit", "load_population",
     "model_age", "population_names", "power_law_population", "read_counts", "relative_rate",
     "strength_limit_radius", "write_counts",
 ]

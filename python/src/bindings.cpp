@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "craterkit/chronology/body.hpp"
+#include "craterkit/chronology/chronology_system.hpp"
 #include "craterkit/chronology/conventions.hpp"
 #include "craterkit/chronology/crater_counts.hpp"
 #include "craterkit/chronology/model_age.hpp"
@@ -231,10 +232,11 @@ py::array_t<double> to_numpy(const std::vector<double>& v) {
 
 ck::CraterCounts make_counts(double area, std::optional<Array> diameters, std::optional<Array> fractions,
                              std::optional<Array> bin_diameters, std::optional<Array> cumulative_counts,
-                             const std::string& source) {
+                             const std::string& source, bool buffered) {
   ck::CraterCounts c;
   c.source = source;
   c.area = area;
+  c.buffered = buffered;
   if (diameters.has_value() == bin_diameters.has_value()) {
     throw craterkit::InputError(
         "CraterCounts: give either diameters (with optional fractions) or bin_diameters with "
@@ -249,9 +251,9 @@ ck::CraterCounts make_counts(double area, std::optional<Array> diameters, std::o
                                   std::to_string(c.diameters.size()) + " diameters");
     }
     for (double f : c.fractions) {
-      if (!(f > 0.0 && f <= 1.0))
+      if (!(f > 0.0 && (f <= 1.0 || buffered) && std::isfinite(f)))
         throw craterkit::InputError("CraterCounts: fraction " + craterkit::format_number(f) +
-                                    " must be in (0, 1]");
+                                    " must be in (0, 1] (or > 0 with buffered=True)");
     }
     for (double d : c.diameters) {
       if (!(d > 0.0) || !std::isfinite(d))
@@ -268,6 +270,27 @@ ck::CraterCounts make_counts(double area, std::optional<Array> diameters, std::o
   }
   ck::validate(c);
   return c;
+}
+
+ck::AgeFitOptions age_options(double min_diameter, double max_diameter,
+                              std::optional<double> equilibrium_fraction, double max_age,
+                              std::size_t grid_points, const std::string& fractions) {
+  ck::AgeFitOptions options;
+  if (fractions != "weight" && fractions != "whole")
+    throw craterkit::InputError("fractions '" + fractions + "' is not known; allowed: weight, whole");
+  options.weight_by_fraction = fractions == "weight";
+  if (!(min_diameter >= 0.0))
+    throw craterkit::InputError("min_diameter " + craterkit::format_number(min_diameter) + " must be >= 0 m");
+  options.min_diameter = min_diameter;
+  options.max_diameter = max_diameter;
+  if (equilibrium_fraction) {
+    options.cap.enabled = true;
+    options.cap.fraction_of_geometric = *equilibrium_fraction;
+    ck::validate(options.cap);
+  }
+  options.max_age = max_age;
+  options.grid_points = grid_points;
+  return options;
 }
 
 }  // namespace
@@ -596,7 +619,8 @@ PYBIND11_MODULE(_craterkit, m) {
       "area in m^2.")
       .def(py::init(&make_counts), py::arg("area"), py::arg("diameters") = py::none(),
            py::arg("fractions") = py::none(), py::arg("bin_diameters") = py::none(),
-           py::arg("cumulative_counts") = py::none(), py::arg("source") = "")
+           py::arg("cumulative_counts") = py::none(), py::arg("source") = "", py::arg("buffered") = false)
+      .def_readonly("buffered", &ck::CraterCounts::buffered)
       .def_readonly("source", &ck::CraterCounts::source)
       .def_readonly("area", &ck::CraterCounts::area)
       .def_property_readonly("binned", &ck::CraterCounts::binned)
@@ -626,9 +650,12 @@ PYBIND11_MODULE(_craterkit, m) {
       "Reads .csv (craterkit), .diam (craterstats) or .scc (CraterTools/craterstats) counts.");
   m.def(
       "write_counts",
-      [](const ck::CraterCounts& c, const std::filesystem::path& p) { ck::write_crater_csv(c, p.string()); },
+      [](const ck::CraterCounts& c, const std::filesystem::path& p) {
+        ck::write_crater_counts(c, p.string());
+      },
       py::arg("counts"), py::arg("path"),
-      "Writes the counts as a craterkit .csv (read back exactly by read_counts).");
+      "Writes the counts by the extension: .csv (craterkit), .diam, .scc or .binned (craterstats); read back "
+      "by read_counts.");
 
   py::class_<ck::AgeEstimate>(m, "AgeEstimate",
                               "A model age (years) from the Poisson likelihood of the counts.")
@@ -652,31 +679,70 @@ PYBIND11_MODULE(_craterkit, m) {
                craterkit::format_number(e.sigma1_low) + ", " + craterkit::format_number(e.sigma1_high) +
                "] yr)";
       });
+  const char* model_age_doc =
+      "The model age (years) of the counts under a Production (scaling law) or a ChronologySystem (published "
+      "production polynomial and N(1)(t)): Poisson likelihood, uniform prior on [0, max_age].";
   m.def(
       "model_age",
       [](const ck::CraterCounts& counts, const Production& production, double min_diameter,
          double max_diameter, std::optional<double> equilibrium_fraction, double max_age,
-         std::size_t grid_points) {
-        ck::AgeFitOptions options;
-        if (!(min_diameter >= 0.0))
-          throw craterkit::InputError("min_diameter " + craterkit::format_number(min_diameter) +
-                                      " must be >= 0 m");
-        options.min_diameter = min_diameter;
-        options.max_diameter = max_diameter;
-        if (equilibrium_fraction) {
-          options.cap.enabled = true;
-          options.cap.fraction_of_geometric = *equilibrium_fraction;
-          ck::validate(options.cap);
-        }
-        options.max_age = max_age;
-        options.grid_points = grid_points;
+         std::size_t grid_points, const std::string& fractions) {
+        const auto options =
+            age_options(min_diameter, max_diameter, equilibrium_fraction, max_age, grid_points, fractions);
         return ck::fit_model_age(counts, ck::production_function(production.setup, production.radius),
                                  options);
       },
       py::arg("counts"), py::arg("production"), py::arg("min_diameter") = 0.0,
       py::arg("max_diameter") = std::numeric_limits<double>::infinity(),
       py::arg("equilibrium_fraction") = py::none(), py::arg("max_age") = 4.567e9,
-      py::arg("grid_points") = 2001,
-      "The model age of the counts under the production (Poisson likelihood, uniform prior on [0, "
-      "max_age]).");
+      py::arg("grid_points") = 2001, py::arg("fractions") = "weight", model_age_doc);
+  m.def(
+      "model_age",
+      [](const ck::CraterCounts& counts, const ck::ChronologySystem& system, double min_diameter,
+         double max_diameter, std::optional<double> equilibrium_fraction, double max_age,
+         std::size_t grid_points, const std::string& fractions, const std::string& prior) {
+        auto options =
+            age_options(min_diameter, max_diameter, equilibrium_fraction, max_age, grid_points, fractions);
+        if (prior != "age" && prior != "density")
+          throw craterkit::InputError("prior '" + prior + "' is not known; allowed: age, density");
+        options.clock = ck::chronology_clock(system);
+        options.prior_uniform_in_density = prior == "density";
+        return ck::fit_model_age(counts, ck::chronology_production(system), options);
+      },
+      py::arg("counts"), py::arg("production"), py::arg("min_diameter") = 0.0,
+      py::arg("max_diameter") = std::numeric_limits<double>::infinity(),
+      py::arg("equilibrium_fraction") = py::none(), py::arg("max_age") = 4.567e9,
+      py::arg("grid_points") = 2001, py::arg("fractions") = "weight", py::arg("prior") = "age",
+      model_age_doc);
+
+  py::class_<ck::ChronologySystem>(
+      m, "ChronologySystem",
+      "A published chronology system: production polynomial and N(1)(t) (data/chronology/).")
+      .def_readonly("name", &ck::ChronologySystem::name)
+      .def_readonly("title", &ck::ChronologySystem::title)
+      .def_readonly("body", &ck::ChronologySystem::body)
+      .def_readonly("citation", &ck::ChronologySystem::citation)
+      .def_readonly("production_coefficients", &ck::ChronologySystem::production)
+      .def_readonly("chronology_coefficients", &ck::ChronologySystem::chronology)
+      .def_property_readonly(
+          "diameter_range",
+          [](const ck::ChronologySystem& s) { return py::make_tuple(s.min_diameter, s.max_diameter); })
+      .def(
+          "n1",
+          [](const ck::ChronologySystem& s, const Array& t) {
+            return py::vectorize([&s](double t_) { return ck::n1(s, t_); })(t);
+          },
+          py::arg("age"), "N(1): craters >= 1 km per km^2 after `age` years.")
+      .def(
+          "cumulative_density",
+          [](const ck::ChronologySystem& s, const Array& d, const Array& t) {
+            return py::vectorize([&s](double d_, double t_) { return ck::cumulative_density(s, d_, t_); })(d,
+                                                                                                           t);
+          },
+          py::arg("diameter"), py::arg("age"), "N(>=D) per km^2 (D in m) after `age` years.")
+      .def("__repr__", [](const ck::ChronologySystem& s) { return "ChronologySystem('" + s.name + "')"; });
+  m.def("chronology_system_names", &ck::chronology_system_names);
+  m.def(
+      "load_chronology_system", &ck::load_chronology_system, py::arg("name"),
+      "A shipped chronology system ('moon_neukum2001', 'mars_neukum_ivanov2001') or a system .toml by path.");
 }

@@ -192,6 +192,45 @@ class Chronology(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "fraction"):
             ck.CraterCounts(area=1e6, diameters=[10.0, 20.0], fractions=[1.0, 1.5])
 
+    def test_fraction_conventions_and_craterstats_formats_match_the_program(self):
+        law = ck.law("jutzi2022_ryugu")
+        counts = ck.read_counts(COUNTS)
+        fractions = np.where(np.arange(len(counts)) % 3 == 0, 0.5, 1.0)
+        partial = ck.CraterCounts(area=counts.area, diameters=counts.diameters, fractions=fractions)
+        production = ck.Production(law, cohesion=0.05)
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "partial.csv")
+            ck.write_counts(partial, path)
+            for convention in ("weight", "whole"):
+                want = cli("age", path, "--params", "jutzi2022_ryugu", "--cohesion", 0.05, "--fractions", convention)
+                got = ck.model_age(partial, production, fractions=convention)
+                self.assertTrue(close(got.median, want["ages"][0]["median_yr"]), convention)
+                self.assertEqual(got.craters_in_range, want["ages"][0]["craters_in_range"])
+            self.assertEqual(ck.model_age(partial, production, fractions="whole").craters_in_range, len(counts))
+            # a craterstats binned file: the bins' craters from D up, the last bin closed by an empty one
+            binned = os.path.join(tmp, "unit.binned")
+            with open(binned, "w") as f:
+                f.write("area = 0.8\ntable = {diameter,frequency\n0.010 30\n0.020 20\n0.040 10\n0.080 0\n}\n")
+            b = ck.read_counts(binned)
+            np.testing.assert_array_equal(b.cumulative_counts, [60, 30, 10, 0])
+            want = cli("age", binned, "--params", "jutzi2022_ryugu", "--cohesion", 0.05)
+            self.assertTrue(close(ck.model_age(b, production).median, want["ages"][0]["median_yr"]))
+        # a published chronology system instead of the scaling law, with craterstats' conventions
+        unit = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "chronology", "data",
+                            "synthetic_lunar_unit.diam")
+        moon = ck.load_chronology_system("moon_neukum2001")
+        self.assertIn("moon_neukum2001", ck.chronology_system_names())
+        self.assertTrue(close(float(moon.n1(3e9)), 5.44e-14 * math.expm1(6.93 * 3) + 8.38e-4 * 3, 1e-13))
+        np.testing.assert_allclose(moon.cumulative_density(1000.0, [1e9, 3e9]), moon.n1([1e9, 3e9]), rtol=1e-13)
+        want = cli("age", unit, "--chronology", "moon_neukum2001", "--min-diameter", 200, "--max-diameter", 1000,
+                   "--fractions", "whole", "--prior", "density")
+        got = ck.model_age(ck.read_counts(unit), moon, min_diameter=200, max_diameter=1000, fractions="whole",
+                           prior="density")
+        self.assertTrue(close(got.median, want["ages"][0]["median_yr"]))
+        self.assertTrue(math.isclose(got.median / 1e9, 0.81299883, rel_tol=6e-3))  # craterstats 3.6.10
+        with self.assertRaisesRegex(ValueError, "allowed: weight, whole"):
+            ck.model_age(partial, production, fractions="half")
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)
