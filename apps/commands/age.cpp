@@ -54,7 +54,8 @@ struct AgeOptions {
   // --chronology NAME|FILE: a published chronology system instead of the scaling law.
   std::optional<std::string> chronology;
   std::optional<std::string> plot;
-  std::string prior = "age";  // --prior age|density (with --chronology)
+  std::string presentation = "cumulative";  // --presentation cumulative|differential|R (the figure)
+  std::string prior = "age";                // --prior age|density (with --chronology)
   craterkit::cli::LawUncertaintyFlags uncertainty;
   bool json = false;
 };
@@ -192,7 +193,9 @@ void run_age(const AgeOptions& o) {
   std::filesystem::path script;
   if (o.plot) {
     const auto ext = std::filesystem::path(*o.plot).extension();
-    if (ext != ".png") throw InputError("--plot " + *o.plot + ": the figure must be a .png file");
+    if (ext != ".png" && ext != ".pdf" && ext != ".svg") {
+      throw InputError("--plot " + *o.plot + ": the figure's extension must be .png, .pdf or .svg");
+    }
     const auto dir = std::filesystem::absolute(*o.plot).parent_path();
     if (!std::filesystem::is_directory(dir)) {
       throw InputError("--plot " + *o.plot + ": directory " + dir.string() + " does not exist");
@@ -334,7 +337,7 @@ void run_age(const AgeOptions& o) {
     const std::filesystem::path png(*o.plot);
     const auto data_path = craterkit::temporary_sibling(png).string() + ".json";
     craterkit::write_text_atomically(data_path, out.dump());
-    const int status = run_python({script.string(), data_path, png.string()});
+    const int status = run_python({script.string(), data_path, png.string(), o.presentation});
     std::error_code ignored;
     std::filesystem::remove(data_path, ignored);
     if (status != 0)
@@ -422,8 +425,15 @@ void add_age_command(CLI::App& parent) {
          "or whole (it counts 1, as craterstats' Poisson fit)")
       ->check(CLI::IsMember({"weight", "whole"}))
       ->capture_default_str();
-  sub->add_option("--plot", o->plot,
-                  "Write the standard figure (cumulative SFD with isochrons, age densities) to this PNG");
+  sub->add_option(
+      "--plot", o->plot,
+      "Write the standard figure (the counts with Poisson error bars and the isochrons, the fit range, "
+      "the age densities) to this .png, .pdf or .svg");
+  sub->add_option(
+         "--presentation", o->presentation,
+         "The counts in the figure: cumulative N(>D), differential dN/dD, or R (relative, D^3 dN/dD)")
+      ->check(CLI::IsMember({"cumulative", "differential", "R"}))
+      ->capture_default_str();
   sub->add_flag("--json", o->json, "Print JSON instead of a table");
   sub->footer(
       "Target density and gravity default to the body's; --impactor-density defaults to 2600 kg/m^3 and the "

@@ -68,6 +68,16 @@ assert d["target_density"] == 1190.0, d  # the body's density, as in rates and a
 assert d["craterkit_version"] and d["scaling_law"]["coefficient_1"] == 0.6, d
 PYEOF
 
+# the age figure in the other presentations and formats
+for p in differential:pdf R:svg; do
+  "$CK" age data/craters/ryugu_synthetic_unit.scc --params jutzi2022_ryugu --cohesion 0.05 --presentation "${p%%:*}" \
+    --plot "figure.${p##*:}" >"$WORK/out" 2>"$WORK/err" || fail "age --plot figure.${p##*:} failed: $(cat "$WORK/err")"
+done
+head -c 5 figure.pdf | grep -q "%PDF" || fail "age --plot figure.pdf is not a PDF"
+grep -q "<svg" figure.svg || fail "age --plot figure.svg is not an SVG"
+"$CK" age data/craters/ryugu_synthetic_unit.scc --params jutzi2022_ryugu --cohesion 0.05 --plot figure.jpg \
+  >"$WORK/out" 2>"$WORK/err" && fail "age --plot figure.jpg succeeded"
+
 # simulate without --out names the folder it writes (here a dry run writes nothing and names none).
 "$CK" simulate data/examples/sod.toml --dry-run >"$WORK/out" 2>"$WORK/err" || fail "simulate --dry-run failed"
 grep -q "no --out" "$WORK/err" && fail "a dry run should not announce an output folder"
