@@ -295,6 +295,8 @@ ck::AgeFitOptions age_options(double min_diameter, double max_diameter,
 
 }  // namespace
 
+void add_snapshot_bindings(py::module_& m);  // snapshots.cpp
+
 PYBIND11_MODULE(_craterkit, m) {
   m.doc() = "craterkit: crater scaling and chronology for small bodies (compiled core)";
   py::register_exception_translator([](std::exception_ptr p) {
@@ -304,6 +306,7 @@ PYBIND11_MODULE(_craterkit, m) {
       PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
+  add_snapshot_bindings(m);
 
   m.def(
       "data_directory", [] { return craterkit::data_directory(); },

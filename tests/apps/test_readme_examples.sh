@@ -6,7 +6,8 @@
 # Also checks a few of the promises the README makes around the examples (list, JSON version, simulate's
 # default output folder).
 # With a fourth argument (the folder of the built Python package), the README's Python block and the Python
-# blocks of docs/python.md (one script, in order) run too, with /usr/bin/python3.
+# blocks of docs/python.md (one script, in order) run too, with /usr/bin/python3 (```py blocks, which need the
+# output of a simulation, do not).
 # Usage: test_readme_examples.sh /path/to/craterkit /path/to/README.md /path/to/data [/path/to/python]
 set -u
 CK=$(realpath "$1")

@@ -232,5 +232,55 @@ class Chronology(unittest.TestCase):
             ck.model_age(partial, production, fractions="half")
 
 
+TINY_IMPACT = """[problem]
+name = "tiny-impact"
+setup = "impact"
+[impact]
+projectile_model = "resolved"
+projectile_density = 1300.0
+projectile_mass = 5450.0
+impact_speed = 50.0
+A_low = 0.27e6
+domain_radius = 5.0
+particle_spacing = 0.5
+t_transition = 0.01
+[run]
+end_time = 0.002
+gravity = [0.0, 0.0, -1.0]
+[kernel]
+max_smoothing_length = 1.8
+[output]
+snapshot_times = [0.0]
+"""
+
+
+class Snapshots(unittest.TestCase):
+    def test_read_and_measure_like_the_program(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            config = os.path.join(tmp, "tiny.toml")
+            with open(config, "w") as f:
+                f.write(TINY_IMPACT)
+            run = os.path.join(tmp, "run")
+            subprocess.run([CK, "simulate", config, "--out", run, "--threads", "1", "--quiet"], check=True,
+                           capture_output=True)
+            snapshot = os.path.join(run, "snap_000000.h5")
+            fields, attributes = ck.read_snapshot(snapshot)
+            self.assertEqual(attributes["configuration"], TINY_IMPACT)
+            self.assertEqual(attributes["craterkit_version"], ck.__version__)
+            self.assertEqual(attributes["setup"], "impact")
+            n = len(fields["x"])
+            self.assertGreater(n, 100)
+            for name in ("id", "material", "y", "z", "vx", "mass", "density", "pressure"):
+                self.assertEqual(len(fields[name]), n, name)
+            self.assertEqual(fields["id"].dtype, np.uint64)
+            self.assertTrue(np.all(fields["mass"] > 0))
+            want = json.loads(subprocess.run([CK, "measure", snapshot, "--json"], check=True, capture_output=True,
+                                             text=True).stdout)
+            got = ck.measure_crater(snapshot)
+            self.assertEqual(got, want)
+            with self.assertRaisesRegex(ValueError, "azimuths 6"):
+                ck.measure_crater(snapshot, azimuths=6)
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)
