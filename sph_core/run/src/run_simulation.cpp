@@ -134,7 +134,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   LateStageReport late_stage_report;
   EjectaLog ejecta_log(out / "ejecta.csv");
   ConservationRecorder conservation(out / "conservation.csv");
-  SnapshotWriter snapshots(out, config.output.snapshot_times, record);
+  SnapshotWriter snapshots(out, config.output.snapshot_times, record, config.output.compression);
   std::vector<RunObserver*> observers;
   if (options.log) observers.push_back(&late_stage_report);
   if (logs_ejecta) observers.push_back(&ejecta_log);
