@@ -31,7 +31,7 @@ def age_label(age):
     value, unit = format_age(median)
     scale = median / value if value else 1.0
     lo, hi = (x / scale for x in age["sigma1_yr"])
-    return f"{value:.3g} (+{hi - value:.2g} / -{value - lo:.2g}) {unit}"
+    return f"{value:.3g} (+{hi - value:.3g} / -{value - lo:.3g}) {unit}"
 
 
 def craters(data):
@@ -142,14 +142,15 @@ def main(argv):
     for i, age in enumerate(data["ages"]):
         c = colours[i % len(colours)]
         ix, iy = isochron_points(age["isochron"], presentation)
-        ax_sfd.plot(ix, iy, "-", color=c, label=f"Y = {age['cohesion']:g} Pa: {age_label(age)}")
+        name = age.get("label") or f"Y = {age['cohesion']:g} Pa"  # a chronology system, or a cohesion
+        ax_sfd.plot(ix, iy, "-", color=c, label=f"{name}: {age_label(age)}")
         ax_pdf.plot([t / unit_scale for t in age["age_grid_yr"]], [p * unit_scale for p in age["density_per_yr"]],
-                    "-", color=c, label=f"Y = {age['cohesion']:g} Pa")
+                    "-", color=c, label=name)
         ax_pdf.axvline(age["median_yr"] / unit_scale, color=c, ls=":", lw=0.8)
     first = data["ages"][0]
     d_lo = first["fit_min_diameter"]
     d_hi = first["fit_max_diameter"]
-    span = f"fit range {d_lo:.3g}-{d_hi:.3g} m" if d_hi else f"fit range from {d_lo:.3g} m"
+    span = f"fit range {d_lo:.4g}-{d_hi:.4g} m" if d_hi else f"fit range from {d_lo:.4g} m"
     ax_sfd.axvspan(d_lo, d_hi or max(xs) * 1.5, color="0.85", zorder=0, label=span)
     ax_sfd.set_xscale("log")
     ax_sfd.set_yscale("log")
@@ -163,7 +164,8 @@ def main(argv):
     ax_pdf.set_xscale("log")
     ax_pdf.set_xlabel(f"model age, {age_unit}")
     ax_pdf.set_ylabel(f"probability density per {age_unit}")
-    ax_pdf.set_title(f"Poisson likelihood ages ({data['scaling_law']['source']}, {conv['region']})", fontsize=10)
+    title = data.get("title") or f"Poisson likelihood ages ({data['scaling_law']['source']}, {conv['region']})"
+    ax_pdf.set_title(title, fontsize=10)
     ax_pdf.legend(fontsize=7)
     fig.tight_layout()
 

@@ -110,6 +110,49 @@ std::vector<double> downsample(const std::vector<double>& v, std::size_t n) {
   return out;
 }
 
+// Observed cumulative SFD (diameter in m, craters per km^2) for the figure: at every crater, largest first,
+// or at every bin.
+nlohmann::json observed_cumulative(const ck::CraterCounts& counts) {
+  nlohmann::json observed = nlohmann::json::array();
+  if (counts.binned()) {
+    for (const auto& b : counts.bins)
+      observed.push_back({b.diameter, b.cumulative_count / counts.area * 1e6});
+    return observed;
+  }
+  std::vector<std::pair<double, double>> sorted;
+  for (std::size_t i = 0; i < counts.diameters.size(); ++i)
+    sorted.emplace_back(counts.diameters[i], counts.fractions[i]);
+  std::sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a.first > b.first; });
+  double running = 0.0;
+  for (const auto& [d, f] : sorted) {
+    running += f;
+    observed.push_back({d, running / counts.area * 1e6});
+  }
+  return observed;
+}
+
+std::pair<double, double> observed_range(const nlohmann::json& observed) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const auto& p : observed) {
+    lo = std::min(lo, p[0].get<double>());
+    hi = std::max(hi, p[0].get<double>());
+  }
+  return {lo, hi};
+}
+
+// Writes the figure of `out` (the JSON of the ages) through plot_age.py.
+void draw_figure(const nlohmann::json& out, const AgeOptions& o, const std::filesystem::path& script) {
+  // The data file is written atomically beside the figure; the script writes the figure atomically too.
+  const std::filesystem::path figure(*o.plot);
+  const auto data_path = craterkit::temporary_sibling(figure).string() + ".json";
+  craterkit::write_text_atomically(data_path, out.dump());
+  const int status = run_python({script.string(), data_path, figure.string(), o.presentation});
+  std::error_code ignored;
+  std::filesystem::remove(data_path, ignored);
+  if (status != 0)
+    throw std::runtime_error(fmt::format("plot_age.py failed (exit status {}); no figure written", status));
+}
+
 // The fit range and conventions shared by both kinds of production.
 ck::AgeFitOptions fit_options(const AgeOptions& o) {
   ck::AgeFitOptions fit;
@@ -130,15 +173,14 @@ ck::AgeFitOptions fit_options(const AgeOptions& o) {
 
 // --chronology: one age from a published chronology system (production polynomial and N(1)(t)), the way
 // crater-counting tools date a count; the scaling law, cohesion and body play no part.
-void run_age_chronology(const AgeOptions& o) {
+void run_age_chronology(const AgeOptions& o, const std::filesystem::path& script) {
   const auto& s = o.scaling;
   const bool law_flags = s.params || s.fit_file || s.group || s.K1 || s.K2 || s.H1 || s.H2 || s.mu || s.nu ||
                          s.gravity || s.target_density || s.impactor_density || s.velocity || s.strength;
-  if (law_flags || !o.cohesion.empty() || o.plot) {
+  if (law_flags || !o.cohesion.empty()) {
     throw InputError("--chronology " + *o.chronology +
                      " dates the count with that system's production and chronology functions: it takes no "
-                     "scaling-law flag (--params, --fit, --K1 ..., --velocity, ...), and no --cohesion "
-                     "or --plot");
+                     "scaling-law flag (--params, --fit, --K1 ..., --velocity, ...) and no --cohesion");
   }
   const auto system = ck::load_chronology_system(*o.chronology);
   const ck::CraterCounts counts = ck::read_crater_counts(o.counts);
@@ -158,13 +200,38 @@ void run_age_chronology(const AgeOptions& o) {
                         {"fit_min_diameter", est.min_diameter},
                         {"fit_max_diameter", std::isinf(est.max_diameter) ? nlohmann::json(nullptr)
                                                                           : nlohmann::json(est.max_diameter)},
-                        {"n1_at_median_per_km2", ck::n1(system, est.median)}};
+                        {"n1_at_median_per_km2", ck::n1(system, est.median)},
+                        {"label", system.title}};
+  nlohmann::json out;
+  out["counts"] = {{"source", counts.source},
+                   {"area_km2", counts.area * 1e-6},
+                   {"binned", counts.binned()},
+                   {"buffered", counts.buffered}};
+  if (o.plot) {
+    // The figure's data: the counts, the isochron at the median age (inside the polynomial's range) and the
+    // age density, as for the scaling law's ages.
+    nlohmann::json figure = out;
+    figure["observed_cumulative_per_km2"] = observed_cumulative(counts);
+    const auto [d_lo, d_hi] = observed_range(figure["observed_cumulative_per_km2"]);
+    const double lo = std::max(0.7 * std::min(d_lo, est.min_diameter), system.min_diameter);
+    const double hi = std::min(1.5 * std::max(d_hi, est.min_diameter), system.max_diameter);
+    const auto production = ck::chronology_production(system);
+    nlohmann::json isochron = nlohmann::json::array();
+    for (int i = 0; i <= 60; ++i) {
+      const double d = lo * std::pow(hi / lo, i / 60.0);
+      isochron.push_back(
+          {d, ck::expected_cumulative_density(fit.cap, d, fit.clock(est.median), production(d)) * 1e6});
+    }
+    nlohmann::json plotted = age;
+    plotted["isochron"] = isochron;
+    plotted["age_grid_yr"] = downsample(est.age_grid, 400);
+    plotted["density_per_yr"] = downsample(est.density, 400);
+    figure["ages"] = nlohmann::json::array({plotted});
+    figure["conventions"] = {{"body", system.body}};
+    figure["title"] = "Poisson likelihood age (" + system.title + ")";
+    draw_figure(figure, o, script);
+  }
   if (o.json) {
-    nlohmann::json out;
-    out["counts"] = {{"source", counts.source},
-                     {"area_km2", counts.area * 1e-6},
-                     {"binned", counts.binned()},
-                     {"buffered", counts.buffered}};
     out["chronology_system"] = {
         {"name", system.name}, {"title", system.title}, {"body", system.body}, {"citation", system.citation}};
     out["conventions"] = {
@@ -204,7 +271,7 @@ void run_age(const AgeOptions& o) {
     check_plotting_available(script);
   }
   if (o.chronology) {
-    run_age_chronology(o);
+    run_age_chronology(o, script);
     return;
   }
   if (o.prior != "age") {
@@ -228,27 +295,8 @@ void run_age(const AgeOptions& o) {
   const double impactor_density = o.scaling.impactor_density.value_or(o.production.impactor_density);
   const auto draws = craterkit::cli::draw_laws(inputs, o.uncertainty);
 
-  // Observed cumulative SFD (per km^2) for the figure.
-  nlohmann::json observed = nlohmann::json::array();
-  if (counts.binned()) {
-    for (const auto& b : counts.bins)
-      observed.push_back({b.diameter, b.cumulative_count / counts.area * 1e6});
-  } else {
-    std::vector<std::pair<double, double>> sorted;
-    for (std::size_t i = 0; i < counts.diameters.size(); ++i)
-      sorted.emplace_back(counts.diameters[i], counts.fractions[i]);
-    std::sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a.first > b.first; });
-    double running = 0.0;
-    for (const auto& [d, f] : sorted) {
-      running += f;
-      observed.push_back({d, running / counts.area * 1e6});
-    }
-  }
-  double d_lo = std::numeric_limits<double>::infinity(), d_hi = 0.0;
-  for (const auto& p : observed) {
-    d_lo = std::min(d_lo, p[0].get<double>());
-    d_hi = std::max(d_hi, p[0].get<double>());
-  }
+  const nlohmann::json observed = observed_cumulative(counts);
+  const auto [d_lo, d_hi] = observed_range(observed);
 
   nlohmann::json ages = nlohmann::json::array();
   for (double y : o.cohesion) {
@@ -332,17 +380,7 @@ void run_age(const AgeOptions& o) {
   out["observed_cumulative_per_km2"] = observed;
   out["ages"] = ages;
 
-  if (o.plot) {
-    // The data file is written atomically beside the figure; the script writes the PNG atomically too.
-    const std::filesystem::path png(*o.plot);
-    const auto data_path = craterkit::temporary_sibling(png).string() + ".json";
-    craterkit::write_text_atomically(data_path, out.dump());
-    const int status = run_python({script.string(), data_path, png.string(), o.presentation});
-    std::error_code ignored;
-    std::filesystem::remove(data_path, ignored);
-    if (status != 0)
-      throw std::runtime_error(fmt::format("plot_age.py failed (exit status {}); no figure written", status));
-  }
+  if (o.plot) draw_figure(out, o, script);
 
   if (o.json) {
     for (auto& a : out["ages"]) {

@@ -75,6 +75,10 @@ for p in differential:pdf R:svg; do
     --plot "figure.${p##*:}" >"$WORK/out" 2>"$WORK/err" || fail "age --plot figure.${p##*:} failed: $(cat "$WORK/err")"
 done
 head -c 5 figure.pdf | grep -q "%PDF" || fail "age --plot figure.pdf is not a PDF"
+"$CK" age "$(dirname "$README")/tests/chronology/data/synthetic_lunar_unit.diam" --chronology moon_neukum2001 \
+  --min-diameter 200 --max-diameter 1000 --plot moon.png --json >"$WORK/out" 2>"$WORK/err" ||
+  fail "age --chronology --plot failed: $(cat "$WORK/err")"
+[ -s moon.png ] || fail "age --chronology --plot wrote no figure"
 grep -q "<svg" figure.svg || fail "age --plot figure.svg is not an SVG"
 "$CK" age data/craters/ryugu_synthetic_unit.scc --params jutzi2022_ryugu --cohesion 0.05 --plot figure.jpg \
   >"$WORK/out" 2>"$WORK/err" && fail "age --plot figure.jpg succeeded"
