@@ -113,11 +113,11 @@ CraterCounts read_craterstats(const std::string& path, const std::string& area_k
       double f = 1.0;
       if (f_col >= 0) {
         const char* column = c.buffered ? "reference_area" : "fraction";
-        const double value = parse_number(fields[static_cast<std::size_t>(f_col)], path, j, column);
-        if (c.buffered && !(value > 0.0)) {
-          throw InputError(where(path, j) + ": reference_area " + format_number(value) + " km^2 must be > 0");
+        const double cell = parse_number(fields[static_cast<std::size_t>(f_col)], path, j, column);
+        if (c.buffered && !(cell > 0.0)) {
+          throw InputError(where(path, j) + ": reference_area " + format_number(cell) + " km^2 must be > 0");
         }
-        f = c.buffered ? 1.0 / value : value;
+        f = c.buffered ? 1.0 / cell : cell;
       }
       add_crater(c, d_km * 1000.0, f, path, j);
     }
