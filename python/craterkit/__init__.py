@@ -34,11 +34,13 @@ from ._craterkit import (
     load_population,
     measure_crater,
     model_age,
+    model_age_spread,
     population_names,
     power_law_population,
     read_counts,
     read_snapshot,
     relative_rate,
+    sample_laws,
     strength_limit_radius,
     write_counts,
 )
@@ -50,7 +52,7 @@ __all__ = [
     "AgeEstimate", "Body", "ChronologySystem", "ConstantSet", "CraterCounts", "FitResult", "Population", "Production", "ScalingLaw",
     "body_names", "chronology_system_names", "constant_set_names", "crater_radius", "data_directory", "fit", "gravity_limit_radius",
     "impact_velocity", "impactor_radius", "law", "load_body", "load_chronology_system", "load_constant_set", "load_fit", "load_population",
-    "measure_crater", "model_age", "population_names", "power_law_population", "read_counts", "read_snapshot", "relative_rate",
+    "measure_crater", "model_age", "model_age_spread", "population_names", "power_law_population", "read_counts", "read_snapshot", "relative_rate", "sample_laws",
     "strength_limit_radius", "write_counts",
 ]
 

@@ -126,6 +126,19 @@ class Scaling(unittest.TestCase):
                          2000, "--gravity", 1.4e-4, "--target-density", 1300, "--strength", 0.05)
             self.assertTrue(close(scaled["crater_radius"],
                                   ck.crater_radius(law, 0.1, 2700, 2000, 1300, 1.4e-4, 0.05)))
+        # the fit's covariance carried into an age, as `age --fit --samples --seed`
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "fit.json")
+            with open(path, "w") as f:
+                f.write(got.to_json())
+            want = cli("age", COUNTS, "--fit", path, "--cohesion", 0.05, "--samples", 200, "--seed", 3)["ages"][0]
+            laws = ck.sample_laws(path, samples=200, seed=3)
+            self.assertEqual(len(laws), 200)
+            counts = ck.read_counts(COUNTS)
+            spread = ck.model_age_spread(counts, ck.Production(got.law, cohesion=0.05), laws)
+            self.assertTrue(close(spread["law_median"][1], want["scaling_law_uncertainty"]["median_yr"]["p50"]))
+            self.assertTrue(close(spread["total_median"], want["total_uncertainty"]["median_yr"]))
+            self.assertTrue(close(spread["total_sigma1"][0], want["total_uncertainty"]["sigma1_yr"][0]))
         with self.assertRaisesRegex(ValueError, "column 'velocity'"):
             ck.fit({k: v for k, v in columns.items() if k != "velocity"})
 
