@@ -1,22 +1,37 @@
-# Installs the build tree into a scratch prefix, moves the installation to another folder, and checks that
-# it works there on its own: the installed program finds the moved data (not the build-time prefix nor the
-# source tree), a downstream project finds craterkit with find_package and links its libraries, a
-# chronology-only project needs neither HDF5 nor OpenMP, and the installed Python package (when built)
-# imports and computes. Invoked by CTest with -DBUILD_DIR, -DCONSUMER_DIR, -DCHRONOLOGY_CONSUMER_DIR,
-# -DSCRATCH, the compiler/linker flags of the build (-DCONSUMER_CXX_FLAGS, -DCONSUMER_LINKER_FLAGS) and,
-# for the Python package, -DPYTHON=<interpreter> -DPYTHON_SUBDIR=<its folder under the prefix>.
+# Installs the build tree into a temporary prefix outside the source and build trees, moves the installation,
+# and checks that it works there on its own: the installed program finds the moved data (not the build-time
+# prefix nor the source tree, and with its data hidden it fails rather than fall back to the source tree), a
+# downstream project finds craterkit with find_package and links its libraries, a chronology-only project
+# needs neither HDF5 nor OpenMP, and the installed Python package (when built) imports and computes.
+# Invoked by CTest with -DBUILD_DIR, -DCONSUMER_DIR, -DCHRONOLOGY_CONSUMER_DIR, -DSCRATCH (consumer builds),
+# the compiler/linker flags of the build (-DCONSUMER_CXX_FLAGS, -DCONSUMER_LINKER_FLAGS) and, for the Python
+# package, -DPYTHON=<interpreter> -DPYTHON_SUBDIR=<its folder under the prefix>.
 file(REMOVE_RECURSE ${SCRATCH})
-execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${SCRATCH}/staged
+file(MAKE_DIRECTORY ${SCRATCH})
+# The installation lives outside the source and build trees (in the temporary folder), so that a binary
+# there can never be taken for one of the build tree: only its own installation can give it data.
+if(DEFINED ENV{TMPDIR} AND IS_DIRECTORY "$ENV{TMPDIR}")
+  set(outside "$ENV{TMPDIR}")
+else()
+  set(outside "/tmp")
+endif()
+string(RANDOM LENGTH 10 tag)
+set(root "${outside}/craterkit-install-check-${tag}")
+macro(fail message_text)
+  file(REMOVE_RECURSE "${root}")
+  message(FATAL_ERROR "${message_text}")
+endmacro()
+execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${root}/staged
                 RESULT_VARIABLE rc OUTPUT_QUIET)
 if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "cmake --install failed (${rc})")
+  fail("cmake --install failed (${rc})")
 endif()
 # The configured prefix (staged) no longer exists after the move: nothing may depend on it.
-file(RENAME ${SCRATCH}/staged ${SCRATCH}/moved)
-set(prefix ${SCRATCH}/moved)
+file(RENAME ${root}/staged ${root}/moved)
+set(prefix ${root}/moved)
 foreach(f bin/craterkit share/craterkit/scaling/jutzi2022_ryugu.toml share/doc/craterkit/LICENSE)
   if(NOT EXISTS ${prefix}/${f})
-    message(FATAL_ERROR "the installation lacks ${f}")
+    fail("the installation lacks ${f}")
   endif()
 endforeach()
 
@@ -25,7 +40,7 @@ function(run_installed out_var)
   execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=CRATERKIT_DATA_DIR ${prefix}/bin/craterkit ${ARGN}
                   WORKING_DIRECTORY ${SCRATCH} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "installed craterkit ${ARGN} failed (${rc}):\n${out}\n${err}")
+    fail("installed craterkit ${ARGN} failed (${rc}):\n${out}\n${err}")
   endif()
   set(${out_var} "${out}" PARENT_SCOPE)
 endfunction()
@@ -36,17 +51,17 @@ string(JSON origin GET "${listing}" data_origin)
 file(REAL_PATH ${prefix}/share/craterkit expected_dir)
 file(REAL_PATH ${data_dir} data_dir)
 if(NOT data_dir STREQUAL expected_dir OR NOT origin STREQUAL "installation")
-  message(FATAL_ERROR "the moved installation uses the data in ${data_dir} (${origin}), not ${expected_dir}")
+  fail("the moved installation uses the data in ${data_dir} (${origin}), not ${expected_dir}")
 endif()
 string(JSON n_sets LENGTH "${listing}" constant_sets)
 if(n_sets LESS 10)
-  message(FATAL_ERROR "the installed program lists ${n_sets} constant sets:\n${listing}")
+  fail("the installed program lists ${n_sets} constant sets:\n${listing}")
 endif()
 run_installed(scaled scale --params jutzi2022_ryugu --body ryugu --impactor-radius 0.056 --impactor-density 2700
               --velocity 2000 --json)
 string(JSON crater_radius GET "${scaled}" crater_radius)
 if(crater_radius LESS 5 OR crater_radius GREATER 20)
-  message(FATAL_ERROR "installed craterkit scale gives a crater radius of ${crater_radius} m")
+  fail("installed craterkit scale gives a crater radius of ${crater_radius} m")
 endif()
 run_installed(aged age ${prefix}/share/craterkit/craters/ryugu_synthetic_unit.scc --params jutzi2022_ryugu
               --body ryugu --cohesion 0.05 --json)
@@ -62,16 +77,16 @@ foreach(consumer ${CONSUMER_DIR} ${CHRONOLOGY_CONSUMER_DIR})
                           ${extra}
                   RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "configuring ${name} with find_package(craterkit) failed (${rc})")
+    fail("configuring ${name} with find_package(craterkit) failed (${rc})")
   endif()
   execute_process(COMMAND ${CMAKE_COMMAND} --build ${SCRATCH}/build_${name} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "building ${name} failed (${rc})")
+    fail("building ${name} failed (${rc})")
   endif()
   execute_process(COMMAND ${CMAKE_COMMAND} -E env CRATERKIT_DATA_DIR=${prefix}/share/craterkit
                           ${SCRATCH}/build_${name}/${name} RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "${name} failed (${rc})")
+    fail("${name} failed (${rc})")
   endif()
 endforeach()
 
@@ -81,6 +96,18 @@ if(PYTHON)
                           "import craterkit, os; d = os.path.realpath(craterkit.data_directory()); assert d == os.path.realpath('${expected_dir}'), d; assert 'jutzi2022_ryugu' in craterkit.constant_set_names(); print(craterkit.__file__, d)"
                   WORKING_DIRECTORY ${SCRATCH} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0 OR NOT out MATCHES "${prefix}")
-    message(FATAL_ERROR "the installed Python package failed (${rc}):\n${out}\n${err}")
+    fail("the installed Python package failed (${rc}):\n${out}\n${err}")
   endif()
 endif()
+
+# With its data hidden, the installed program must not fall back to the source tree of its build.
+file(RENAME ${prefix}/share/craterkit ${prefix}/share/craterkit.hidden)
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=CRATERKIT_DATA_DIR ${prefix}/bin/craterkit list --json
+                WORKING_DIRECTORY ${root} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 AND out MATCHES "source tree")
+  fail("with its data hidden, the installed program used the source tree:\n${out}")
+endif()
+if(NOT rc EQUAL 0 AND NOT err MATCHES "data directory not found")
+  fail("with its data hidden, the installed program failed without saying why (${rc}):\n${err}")
+endif()
+file(REMOVE_RECURSE "${root}")
