@@ -39,6 +39,7 @@ bool holds_data(const fs::path& dir) {
   return fs::is_directory(dir / "scaling", ec) && fs::is_directory(dir / "bodies", ec);
 }
 
+// Whether `file` (an absolute, canonical path) is `dir` or lies below it.
 bool inside(const fs::path& file, const fs::path& dir) {
   std::error_code ec;
   const fs::path root = fs::weakly_canonical(dir, ec);
@@ -53,8 +54,12 @@ std::pair<fs::path, std::string> locate() {
   const auto binaries = binary_locations();
   std::string searched;
   for (const auto& binary : binaries) {
+    // A binary of the build tree looks no higher than the build tree itself (an installation into a folder
+    // of it still counts), so that an unrelated installation above it is never taken for its data.
+    const bool in_build_tree = inside(binary, CRATERKIT_BUILD_DIR);
     fs::path dir = binary.parent_path();
     for (int level = 0; level < 6 && !dir.empty(); ++level) {
+      if (in_build_tree && !inside(dir, CRATERKIT_BUILD_DIR)) break;
       const fs::path candidate = dir / CRATERKIT_RELATIVE_DATA_DIR;
       if (holds_data(candidate)) return {candidate, "installation"};
       if (dir == dir.root_path()) break;

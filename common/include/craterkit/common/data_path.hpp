@@ -4,7 +4,8 @@
 //  1. $CRATERKIT_DATA_DIR when set (it must be a directory);
 //  2. relative to the binary that holds this code (the program, or a shared module such as the Python
 //     extension): the first ancestor folder of the binary, up to five levels up, that has
-//     <datadir>/craterkit/ (share/craterkit/ by default), so an installed tree works wherever it is moved;
+//     <datadir>/craterkit/ (share/craterkit/ by default), so an installed tree works wherever it is moved
+//     (a binary inside the build tree looks no higher than the build tree);
 //  3. the source tree's data/, only for a binary that lies inside the build tree it was built in;
 //  4. the install prefix configured at build time (for programs of other projects that link the static
 //     libraries).
