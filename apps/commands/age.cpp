@@ -18,6 +18,7 @@
 
 #include "command_registry.hpp"
 #include "craterkit/chronology/body.hpp"
+#include "craterkit/chronology/chronology_system.hpp"
 #include "craterkit/chronology/crater_counts.hpp"
 #include "craterkit/chronology/law_propagation.hpp"
 #include "craterkit/chronology/model_age.hpp"
@@ -27,6 +28,7 @@
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "json_output.hpp"
 #include "law_uncertainty_flags.hpp"
 #include "production_flags.hpp"
 #include "python_plot.hpp"
@@ -46,7 +48,12 @@ struct AgeOptions {
   std::optional<double> min_diameter;
   std::optional<double> max_diameter;
   std::optional<double> equilibrium;
+  std::string fractions = "weight";  // --fractions weight|whole
+  // --chronology NAME|FILE: a published chronology system instead of the scaling law.
+  std::optional<std::string> chronology;
   std::optional<std::string> plot;
+  std::string presentation = "cumulative";  // --presentation cumulative|differential|R (the figure)
+  std::string prior = "age";                // --prior age|density (with --chronology)
   craterkit::cli::LawUncertaintyFlags uncertainty;
   bool json = false;
 };
@@ -58,11 +65,159 @@ std::vector<double> downsample(const std::vector<double>& v, std::size_t n) {
   return out;
 }
 
+// Observed cumulative SFD (diameter in m, craters per km^2) for the figure: at every crater, largest first,
+// or at every bin.
+nlohmann::json observed_cumulative(const ck::CraterCounts& counts) {
+  nlohmann::json observed = nlohmann::json::array();
+  if (counts.binned()) {
+    for (const auto& b : counts.bins)
+      observed.push_back({b.diameter, b.cumulative_count / counts.area * 1e6});
+    return observed;
+  }
+  std::vector<std::pair<double, double>> sorted;
+  for (std::size_t i = 0; i < counts.diameters.size(); ++i)
+    sorted.emplace_back(counts.diameters[i], counts.fractions[i]);
+  std::sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a.first > b.first; });
+  double running = 0.0;
+  for (const auto& [d, f] : sorted) {
+    running += f;
+    observed.push_back({d, running / counts.area * 1e6});
+  }
+  return observed;
+}
+
+std::pair<double, double> observed_range(const nlohmann::json& observed) {
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const auto& p : observed) {
+    lo = std::min(lo, p[0].get<double>());
+    hi = std::max(hi, p[0].get<double>());
+  }
+  return {lo, hi};
+}
+
+// Writes the figure of `out` (the JSON of the ages) through plot_age.py.
+void draw_figure(const nlohmann::json& out, const AgeOptions& o, const std::filesystem::path& script) {
+  // The data file is written atomically beside the figure; the script writes the figure atomically too.
+  const std::filesystem::path figure(*o.plot);
+  const auto data_path = craterkit::temporary_sibling(figure).string() + ".json";
+  craterkit::write_text_atomically(data_path, out.dump());
+  const int status = craterkit::cli::run_python({script.string(), data_path, figure.string(), o.presentation});
+  std::error_code ignored;
+  std::filesystem::remove(data_path, ignored);
+  if (status != 0)
+    throw std::runtime_error(fmt::format("plot_age.py failed (exit status {}); no figure written", status));
+}
+
+// The fit range and conventions shared by both kinds of production.
+ck::AgeFitOptions fit_options(const AgeOptions& o) {
+  ck::AgeFitOptions fit;
+  if (o.min_diameter) {
+    if (!(*o.min_diameter > 0.0))
+      throw InputError(fmt::format("--min-diameter {} must be > 0 m", *o.min_diameter));
+    fit.min_diameter = *o.min_diameter;
+  }
+  if (o.max_diameter) fit.max_diameter = *o.max_diameter;
+  fit.weight_by_fraction = o.fractions == "weight";
+  if (o.equilibrium) {
+    fit.cap.enabled = true;
+    fit.cap.fraction_of_geometric = *o.equilibrium;
+    ck::validate(fit.cap);
+  }
+  return fit;
+}
+
+// --chronology: one age from a published chronology system (production polynomial and N(1)(t)), the way
+// crater-counting tools date a count; the scaling law, cohesion and body play no part.
+void run_age_chronology(const AgeOptions& o, const std::filesystem::path& script) {
+  const auto& s = o.scaling;
+  const bool law_flags = s.params || s.fit_file || s.group || s.K1 || s.K2 || s.H1 || s.H2 || s.mu || s.nu ||
+                         s.gravity || s.target_density || s.impactor_density || s.velocity || s.strength;
+  if (law_flags || !o.cohesion.empty()) {
+    throw InputError("--chronology " + *o.chronology +
+                     " dates the count with that system's production and chronology functions: it takes no "
+                     "scaling-law flag (--params, --fit, --K1 ..., --velocity, ...) and no --cohesion");
+  }
+  const auto system = ck::load_chronology_system(*o.chronology);
+  const ck::CraterCounts counts = ck::read_crater_counts(o.counts);
+  ck::AgeFitOptions fit = fit_options(o);
+  fit.clock = ck::chronology_clock(system);
+  fit.prior_uniform_in_density = o.prior == "density";
+  const auto est = ck::fit_model_age(counts, ck::chronology_production(system), fit);
+  nlohmann::json age = {{"chronology", system.name},
+                        {"median_yr", est.median},
+                        {"mode_yr", est.mode},
+                        {"sigma1_yr", {est.sigma1_low, est.sigma1_high}},
+                        {"sigma2_yr", {est.sigma2_low, est.sigma2_high}},
+                        {"reaches_max_age", est.reaches_max_age},
+                        {"cumulative_fit_age_yr", est.cumulative_fit_age},
+                        {"cumulative_fit_sigma_yr", est.cumulative_fit_sigma},
+                        {"craters_in_range", est.craters_in_range},
+                        {"fit_min_diameter", est.min_diameter},
+                        {"fit_max_diameter", std::isinf(est.max_diameter) ? nlohmann::json(nullptr)
+                                                                          : nlohmann::json(est.max_diameter)},
+                        {"n1_at_median_per_km2", ck::n1(system, est.median)},
+                        {"label", system.title}};
+  nlohmann::json out;
+  out["counts"] = {{"source", counts.source},
+                   {"area_km2", counts.area * 1e-6},
+                   {"binned", counts.binned()},
+                   {"buffered", counts.buffered}};
+  if (o.plot) {
+    // The figure's data: the counts, the isochron at the median age (inside the polynomial's range) and the
+    // age density, as for the scaling law's ages.
+    nlohmann::json figure = out;
+    figure["observed_cumulative_per_km2"] = observed_cumulative(counts);
+    const auto [d_lo, d_hi] = observed_range(figure["observed_cumulative_per_km2"]);
+    const double lo = std::max(0.7 * std::min(d_lo, est.min_diameter), system.min_diameter);
+    const double hi = std::min(1.5 * std::max(d_hi, est.min_diameter), system.max_diameter);
+    const auto production = ck::chronology_production(system);
+    nlohmann::json isochron = nlohmann::json::array();
+    for (int i = 0; i <= 60; ++i) {
+      const double d = lo * std::pow(hi / lo, i / 60.0);
+      isochron.push_back(
+          {d, ck::expected_cumulative_density(fit.cap, d, fit.clock(est.median), production(d)) * 1e6});
+    }
+    nlohmann::json plotted = age;
+    plotted["isochron"] = isochron;
+    plotted["age_grid_yr"] = downsample(est.age_grid, 400);
+    plotted["density_per_yr"] = downsample(est.density, 400);
+    figure["ages"] = nlohmann::json::array({plotted});
+    figure["conventions"] = {{"body", system.body}};
+    figure["title"] = "Poisson likelihood age (" + system.title + ")";
+    draw_figure(figure, o, script);
+  }
+  if (o.json) {
+    out["chronology_system"] = {
+        {"name", system.name}, {"title", system.title}, {"body", system.body}, {"citation", system.citation}};
+    out["conventions"] = {
+        {"fractions", o.fractions},
+        {"equilibrium_fraction",
+         fit.cap.enabled ? nlohmann::json(fit.cap.fraction_of_geometric) : nlohmann::json(nullptr)},
+        {"prior", fmt::format("uniform in {} on [0, {:g}] yr",
+                              o.prior == "density" ? "crater density" : "age", fit.max_age)}};
+    out["ages"] = nlohmann::json::array({age});
+    craterkit::cli::print_json(out);
+    return;
+  }
+  std::cout << fmt::format("# craterkit age: {} ({:.4g} km^2), chronology system {} ({})\n", counts.source,
+                           counts.area * 1e-6, system.title, system.name);
+  std::cout << fmt::format("{:>8} {:>12} {:>25} {:>25} {:>20}\n", "N_fit", "median_Myr", "1-sigma_Myr",
+                           "2-sigma_Myr", "cumulative_fit_Myr");
+  std::cout << fmt::format(
+      "{:>8.4g} {:>12.4g} {:>25} {:>25} {:>20}{}\n", est.craters_in_range, est.median / 1e6,
+      fmt::format("[{:.4g}, {:.4g}]", est.sigma1_low / 1e6, est.sigma1_high / 1e6),
+      fmt::format("[{:.4g}, {:.4g}]", est.sigma2_low / 1e6, est.sigma2_high / 1e6),
+      fmt::format("{:.4g} +- {:.2g}", est.cumulative_fit_age / 1e6, est.cumulative_fit_sigma / 1e6),
+      est.reaches_max_age ? "  (density reaches the maximum age: a lower bound)" : "");
+}
+
 void run_age(const AgeOptions& o) {
   std::filesystem::path script;
   if (o.plot) {
     const auto ext = std::filesystem::path(*o.plot).extension();
-    if (ext != ".png") throw InputError("--plot " + *o.plot + ": the figure must be a .png file");
+    if (ext != ".png" && ext != ".pdf" && ext != ".svg") {
+      throw InputError("--plot " + *o.plot + ": the figure's extension must be .png, .pdf or .svg");
+    }
     const auto dir = std::filesystem::absolute(*o.plot).parent_path();
     if (!std::filesystem::is_directory(dir)) {
       throw InputError("--plot " + *o.plot + ": directory " + dir.string() + " does not exist");
@@ -71,6 +226,14 @@ void run_age(const AgeOptions& o) {
     if (const auto why = craterkit::cli::plotting_unavailable(script, "CRATERKIT_PLOT_AGE_SCRIPT");
         !why.empty())
       throw std::runtime_error("--plot: " + why + "; no figure written");
+  }
+  if (o.chronology) {
+    run_age_chronology(o, script);
+    return;
+  }
+  if (o.prior != "age") {
+    throw InputError("--prior " + o.prior +
+                     " needs --chronology: with the scaling law's constant flux both priors are the same");
   }
   auto inputs = craterkit::cli::resolve_scaling_flags(o.scaling);
   const ck::Body body = ck::load_body(o.production.body);
@@ -81,18 +244,7 @@ void run_age(const AgeOptions& o) {
                                                               ck::load_population(o.population));
   const auto region = ck::collision_region_from_string(o.production.region);
 
-  ck::AgeFitOptions fit;
-  if (o.min_diameter) {
-    if (!(*o.min_diameter > 0.0))
-      throw InputError(fmt::format("--min-diameter {} must be > 0 m", *o.min_diameter));
-    fit.min_diameter = *o.min_diameter;
-  }
-  if (o.max_diameter) fit.max_diameter = *o.max_diameter;
-  if (o.equilibrium) {
-    fit.cap.enabled = true;
-    fit.cap.fraction_of_geometric = *o.equilibrium;
-    ck::validate(fit.cap);
-  }
+  const ck::AgeFitOptions fit = fit_options(o);
 
   craterkit::scaling::Target target;
   target.density = o.scaling.target_density.value_or(body.bulk_density);
@@ -100,27 +252,8 @@ void run_age(const AgeOptions& o) {
   const double impactor_density = o.scaling.impactor_density.value_or(o.production.impactor_density);
   const auto draws = craterkit::cli::draw_laws(inputs, o.uncertainty);
 
-  // Observed cumulative SFD (per km^2) for the figure.
-  nlohmann::json observed = nlohmann::json::array();
-  if (counts.binned()) {
-    for (const auto& b : counts.bins)
-      observed.push_back({b.diameter, b.cumulative_count / counts.area * 1e6});
-  } else {
-    std::vector<std::pair<double, double>> sorted;
-    for (std::size_t i = 0; i < counts.diameters.size(); ++i)
-      sorted.emplace_back(counts.diameters[i], counts.fractions[i]);
-    std::sort(sorted.begin(), sorted.end(), [](auto a, auto b) { return a.first > b.first; });
-    double running = 0.0;
-    for (const auto& [d, f] : sorted) {
-      running += f;
-      observed.push_back({d, running / counts.area * 1e6});
-    }
-  }
-  double d_lo = std::numeric_limits<double>::infinity(), d_hi = 0.0;
-  for (const auto& p : observed) {
-    d_lo = std::min(d_lo, p[0].get<double>());
-    d_hi = std::max(d_hi, p[0].get<double>());
-  }
+  const nlohmann::json observed = observed_cumulative(counts);
+  const auto [d_lo, d_hi] = observed_range(observed);
 
   nlohmann::json ages = nlohmann::json::array();
   for (double y : o.cohesion) {
@@ -190,6 +323,7 @@ void run_age(const AgeOptions& o) {
       {"cross_section", o.production.cross_section},
       {"equilibrium_fraction",
        fit.cap.enabled ? nlohmann::json(fit.cap.fraction_of_geometric) : nlohmann::json(nullptr)},
+      {"fractions", o.fractions},
       {"prior", fmt::format("uniform in age on [0, {:g}] yr", fit.max_age)}};
   nlohmann::json warnings = nlohmann::json::array();
   if (setup.population.approximate) {
@@ -203,23 +337,13 @@ void run_age(const AgeOptions& o) {
   out["observed_cumulative_per_km2"] = observed;
   out["ages"] = ages;
 
-  if (o.plot) {
-    // The data file is written atomically beside the figure; the script writes the PNG atomically too.
-    const std::filesystem::path png(*o.plot);
-    const auto data_path = craterkit::temporary_sibling(png).string() + ".json";
-    craterkit::write_text_atomically(data_path, out.dump());
-    const int status = craterkit::cli::run_python({script.string(), data_path, png.string()});
-    std::error_code ignored;
-    std::filesystem::remove(data_path, ignored);
-    if (status != 0)
-      throw std::runtime_error(fmt::format("plot_age.py failed (exit status {}); no figure written", status));
-  }
+  if (o.plot) draw_figure(out, o, script);
 
   if (o.json) {
     for (auto& a : out["ages"]) {
       a.erase("isochron");  // figure data stays out of the printed JSON unless asked for
     }
-    std::cout << out.dump(2) << "\n";
+    craterkit::cli::print_json(out);
     return;
   }
   std::cout << fmt::format(
@@ -271,8 +395,17 @@ void add_age_command(CLI::App& parent) {
   craterkit::cli::add_law_uncertainty_flags(*sub, o->uncertainty);
   sub->add_option("--cohesion", o->cohesion,
                   "Cohesions Y of the scaling law, Pa (comma-separated); one age each")
-      ->delimiter(',')
-      ->required();
+      ->delimiter(',');
+  sub->add_option(
+         "--prior", o->prior,
+         "With --chronology: the prior is uniform in age, or in crater density (density: proportional to "
+         "the flux, as craterstats)")
+      ->check(CLI::IsMember({"age", "density"}))
+      ->capture_default_str();
+  sub->add_option(
+      "--chronology", o->chronology,
+      "Date with a published chronology system instead of the scaling law (data/chronology/NAME, "
+      "e.g. moon_neukum2001, mars_neukum_ivanov2001, or a file): no law flags and no --cohesion then");
   sub->add_option("--population", o->population, "Impactor population in data/populations/ or a .toml file")
       ->capture_default_str();
   sub->add_option("--min-diameter", o->min_diameter,
@@ -281,8 +414,21 @@ void add_age_command(CLI::App& parent) {
   sub->add_option("--equilibrium", o->equilibrium,
                   "Cap counts at equilibrium: this fraction of the geometric saturation 1.54 D^-2 (Gault "
                   "1970), e.g. 0.05");
-  sub->add_option("--plot", o->plot,
-                  "Write the standard figure (cumulative SFD with isochrons, age densities) to this PNG");
+  sub->add_option(
+         "--fractions", o->fractions,
+         "How a crater's fraction (buffered counts) enters the Poisson likelihood: weight (it counts f) "
+         "or whole (it counts 1, as craterstats' Poisson fit)")
+      ->check(CLI::IsMember({"weight", "whole"}))
+      ->capture_default_str();
+  sub->add_option(
+      "--plot", o->plot,
+      "Write the standard figure (the counts with Poisson error bars and the isochrons, the fit range, "
+      "the age densities) to this .png, .pdf or .svg");
+  sub->add_option(
+         "--presentation", o->presentation,
+         "The counts in the figure: cumulative N(>D), differential dN/dD, or R (relative, D^3 dN/dD)")
+      ->check(CLI::IsMember({"cumulative", "differential", "R"}))
+      ->capture_default_str();
   sub->add_flag("--json", o->json, "Print JSON instead of a table");
   sub->footer(
       "Target density and gravity default to the body's; --impactor-density defaults to 2600 kg/m^3 and the "

@@ -20,6 +20,7 @@
 #include "craterkit/scaling/grouped_fit.hpp"
 #include "craterkit/scaling/radii_table.hpp"
 #include "fit_report.hpp"
+#include "json_output.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -90,11 +91,12 @@ void run_fit(const FitCommandOptions& options) {
   const auto table = scaling::read_radii_csv(options.table);
   const auto result = scaling::fit_groups(table, grouped_options);
   // A table without grouping columns (or --group-by none) gives the single-fit JSON it always has.
-  const auto json = result.grouped() ? scaling::grouped_fit_to_json(result)
-                                     : scaling::fit_to_json(result.groups.front().fit.value());
+  const auto json = craterkit::cli::with_version(
+      result.grouped() ? scaling::grouped_fit_to_json(result)
+                       : scaling::fit_to_json(result.groups.front().fit.value()));
   if (options.out) write_text_atomically(*options.out, json.dump(2) + "\n");
   if (options.json) {
-    std::cout << json.dump(2) << "\n";
+    craterkit::cli::print_json(json);
   } else {
     print_grouped_fit_report(result, table);
     if (options.out) fmt::print("  written: {}\n", *options.out);

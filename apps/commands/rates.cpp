@@ -17,6 +17,7 @@
 #include "craterkit/chronology/production.hpp"
 #include "craterkit/chronology/scaled_production.hpp"
 #include "craterkit/common/input_error.hpp"
+#include "json_output.hpp"
 #include "law_uncertainty_flags.hpp"
 #include "production_flags.hpp"
 #include "scaling_flags.hpp"
@@ -118,7 +119,7 @@ void run_rates(const RatesOptions& o) {
         {"diameters", "rim-to-rim, m"},
         {"impactor_radius", "m, at the (mean) impact speed"},
         {"relative_rate", "rate of craters larger than the diameter, relative to the first cohesion"}};
-    std::cout << out.dump(2) << "\n";
+    craterkit::cli::print_json(out);
     return;
   }
   std::cout << fmt::format("# craterkit rates: {} ({}), {} collisions, population {}\n", body.name,

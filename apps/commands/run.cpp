@@ -20,10 +20,12 @@
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/radii_table.hpp"
+#include "craterkit/study/dry_run.hpp"
 #include "craterkit/study/study_file.hpp"
 #include "craterkit/study/study_plan.hpp"
 #include "craterkit/study/sweep.hpp"
 #include "craterkit_version.hpp"
+#include "json_output.hpp"
 #include "main_job_stages.hpp"
 #include "python_plot.hpp"
 
@@ -41,6 +43,7 @@ struct MainJobOptions {
   bool full = false;
   int jobs = 0;
   int threads = 0;
+  bool dry_run = false;
   bool json = false;
 };
 
@@ -119,6 +122,19 @@ void run_main_job(const MainJobOptions& o) {
   const bool default_study = !o.full && !o.study;
   const std::filesystem::path study_file =
       o.study ? std::filesystem::path(*o.study) : data_file(o.full ? kFullStudy : kDefaultStudy);
+  if (o.dry_run) {
+    // The study's runs as the sweep would plan them, and what would be fitted; nothing run or written.
+    const study::Study s = study::load_study(study_file);
+    const study::StudyPlan plan = study::plan_study(s, std::filesystem::path(o.out) / "sweep");
+    const int jobs = o.jobs > 0 ? o.jobs : study::available_cores();
+    std::cout << study::format_dry_run(
+        plan, study::count_particles(s, std::filesystem::read_symlink("/proc/self/exe"), jobs), o.json);
+    if (!o.json) {
+      fmt::print("then: the fit of {}, the SCI crater, rates and ages per cohesion into {}\n",
+                 default_study ? data_file(kShippedTable).string() : (plan.out / "radii.csv").string(), o.out);
+    }
+    return;
+  }
   std::string report = fmt::format("# craterkit main job\n\n{}; results in {}.\n", producer(), o.out);
   nlohmann::json summary = {{"producer", producer()}, {"study", study_file.string()}};
 
@@ -139,12 +155,12 @@ void run_main_job(const MainJobOptions& o) {
   summary["ages"] = model_ages(fit.law(), report);
 
   const std::filesystem::path dir(o.out);
-  write_text_atomically(dir / "fit.json", fit_json.dump(2) + "\n");
-  write_text_atomically(dir / "summary.json", summary.dump(2) + "\n");
+  write_text_atomically(dir / "fit.json", with_version(fit_json).dump(2) + "\n");
+  write_text_atomically(dir / "summary.json", with_version(summary).dump(2) + "\n");
   const std::string figure = draw_figure(dir);
   write_text_atomically(dir / "report.md", report + figure_note(figure));
   if (o.json) {
-    std::cout << summary.dump(2) << "\n";
+    print_json(summary);
     return;
   }
   std::cout << report << figure_note(figure);
@@ -165,6 +181,8 @@ void add_run_command(CLI::App& parent) {
   sub->add_option("--study", options->study, "Run this study (docs/sweep.md) live and fit its craters");
   sub->add_option("--jobs", options->jobs, "Runs at once (default: the cores, at most the runs)");
   sub->add_option("--threads", options->threads, "OpenMP threads per run (default: cores / jobs)");
+  sub->add_flag("--dry-run", options->dry_run,
+                "Check the study and list its runs with their particle counts; run and write nothing");
   sub->add_flag("--json", options->json, "Print summary.json instead of the report");
   sub->footer(
       "Runs finished by an earlier main job in the same --out are reused. Default: two runs of "

@@ -10,8 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "command_registry.hpp"
+#include "craterkit/chronology/body.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/point_source.hpp"
+#include "json_output.hpp"
 #include "scaling_flags.hpp"
 
 namespace craterkit::cli {
@@ -21,21 +23,20 @@ struct ScaleOptions {
   ScalingFlags scaling;
   std::optional<double> impactor_radius;
   std::optional<double> crater_radius;
+  std::optional<std::string> body;  // --body NAME|FILE: gravity (and target density) of a shipped body
   bool json = false;
 };
 
-nlohmann::json law_json(const scaling::ScalingLaw& law, const std::string& source) {
-  nlohmann::json out{{"form", scaling::to_string(law.form)}, {"source", source}};
-  const auto finite = [](double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); };
-  out[scaling::coefficient_name(law.form, 1)] = finite(law.coefficient_1);
-  out[scaling::coefficient_name(law.form, 2)] = finite(law.coefficient_2);
-  out["mu"] = law.mu;
-  out["nu"] = law.nu;
-  return out;
-}
-
 void run_scale(const ScaleOptions& options) {
-  const ScalingInputs inputs = resolve_scaling_flags(options.scaling);
+  ScalingInputs inputs = resolve_scaling_flags(options.scaling);
+  std::optional<chronology::Body> body;
+  if (options.body) {
+    body = chronology::load_body(*options.body);
+    // As in `rates` and `age`: the body's gravity and bulk density unless --gravity / --target-density are
+    // given (the body's density replaces a constant set's).
+    if (!options.scaling.gravity) inputs.gravity = body->surface_gravity;
+    if (!options.scaling.target_density) inputs.target_density = body->bulk_density;
+  }
   if (options.impactor_radius.has_value() == options.crater_radius.has_value()) {
     throw InputError(
         "give exactly one of --impactor-radius (to compute the crater radius) or --crater-radius "
@@ -94,9 +95,10 @@ void run_scale(const ScaleOptions& options) {
         {"strength_share", regime.strength_share},
         {"gravity_limit_radius", optional_json(gravity_limit)},
         {"strength_limit_radius", optional_json(strength_limit)},
-        {"law", law_json(inputs.law, inputs.law_source)},
+        {"scaling_law", scaling_law_json(inputs)},
     };
-    std::cout << out.dump(2) << "\n";
+    out["body"] = body ? nlohmann::json(body->name) : nlohmann::json(nullptr);
+    craterkit::cli::print_json(out);
     return;
   }
   if (options.crater_radius) {
@@ -112,6 +114,10 @@ void run_scale(const ScaleOptions& options) {
   if (gravity_limit) fmt::print("  pure-gravity limit: {:.6g} m\n", *gravity_limit);
   if (strength_limit) fmt::print("  pure-strength limit: {:.6g} m\n", *strength_limit);
   fmt::print("  law: {} form from {}\n", scaling::to_string(inputs.law.form), inputs.law_source);
+  if (body) {
+    fmt::print("  target: {} (g = {:.6g} m/s^2, rho = {:.6g} kg/m^3)\n", body->name, target.gravity,
+               target.density);
+  }
 }
 
 void add_scale_command(CLI::App& parent) {
@@ -126,12 +132,17 @@ void add_scale_command(CLI::App& parent) {
   impactor->excludes(crater);
   add_scaling_flags(*sub, options->scaling);
   add_strength_flag(*sub, options->scaling);
+  sub->add_option(
+      "--body", options->body,
+      "Target body (data/bodies/NAME.toml, e.g. ryugu, or a body file): its surface gravity and bulk "
+      "density, as in rates and age (--gravity and --target-density override them)");
   sub->add_flag("--json", options->json, "Print a JSON object instead of text");
   sub->footer(
       "The law comes from --params NAME (data/scaling/NAME.toml), --fit FIT.json, or --K1 --K2 (Holsapple "
       "form) "
       "/ --H1 --H2 (Housen & Holsapple 2011 form) with --mu --nu; explicit flags override a set or fit. "
-      "Strength and target density default to the set's values. SI units throughout.");
+      "Strength and target density default to the set's values; --body gives the gravity and the target "
+      "density (as in rates and age). SI units throughout.");
   sub->callback([options] { run_scale(*options); });
 }
 

@@ -96,7 +96,16 @@ ScalingInputs resolve_scaling_flags(const ScalingFlags& flags) {
     out.target_density = set.target_density;
     have_base = true;
   } else if (flags.fit_file) {
-    const auto fitted = scaling::load_fitted_law(*flags.fit_file, flags.group);
+    scaling::FittedLaw fitted;
+    try {
+      fitted = scaling::load_fitted_law(*flags.fit_file, flags.group);
+    } catch (const InputError& e) {
+      // The library speaks of a group selector; on the command line that is --group.
+      const std::string what = e.what();
+      if (what.find("group selector") == std::string::npos) throw;
+      throw InputError((flags.group ? "--group " + *flags.group + ": " : std::string("--fit: ")) + what +
+                       (flags.group ? "" : " (give it with --group)"));
+    }
     out.law = fitted.law;
     out.law_source = "fit " + *flags.fit_file;
     if (!fitted.group.empty()) out.law_source += " group " + scaling::describe(fitted.group);

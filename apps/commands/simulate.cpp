@@ -3,8 +3,11 @@
 #include <omp.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -15,6 +18,7 @@
 #include "craterkit/common/toml_table.hpp"
 #include "craterkit/impact/impact_run.hpp"
 #include "craterkit/sph/run/standard_problem_config.hpp"
+#include "json_output.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -105,7 +109,7 @@ void print_dry_run(const std::string& name, const std::string& setup, const sph:
       out["projectile_particles"] = impact->projectile_particles;
       out["t_transition"] = impact->transition_time;
     }
-    std::cout << out.dump(2) << "\n";
+    craterkit::cli::print_json(out);
     return;
   }
   if (impact != nullptr) fmt::print("{}", impact::describe_impact(*impact));
@@ -152,11 +156,18 @@ void print_summary(const sph::RunSummary& summary, const std::string& out,
   fmt::print("{}", summary.phase_table);
 }
 
-void run_simulate(const SimulateOptions& options) {
+void run_simulate(const SimulateOptions& given) {
+  SimulateOptions options = given;
   if (options.threads < 0)
     throw InputError("--threads " + std::to_string(options.threads) + ": must be >= 1");
   if (options.resume && options.out.empty())
     throw InputError("--resume needs --out DIR (where the checkpoint is)");
+  if (options.out.empty() && !options.dry_run) {
+    // Without --out a run still keeps its output: a folder named after the configuration, in the current
+    // directory, said on stderr before the run starts.
+    options.out = std::filesystem::path(options.config).stem().string() + "-run";
+    std::cerr << "craterkit: no --out given: writing the output to " << options.out << "/\n";
+  }
   TomlTable root = TomlTable::parse_file(options.config);
   std::vector<std::string> setups = sph::standard_problem_names();
   setups.push_back("impact");
@@ -166,6 +177,13 @@ void run_simulate(const SimulateOptions& options) {
   run.output_directory = options.out;
   run.resume = options.resume;
   run.progress = !options.quiet;
+  {
+    // The configuration as written, kept in every snapshot and checkpoint (attribute `configuration`).
+    std::ifstream in(options.config, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    run.configuration = text.str();
+  }
   if (setup == "impact") {
     const impact::ImpactConfig config = impact::parse_impact_config(root);
     if (options.dry_run) {
@@ -176,7 +194,7 @@ void run_simulate(const SimulateOptions& options) {
     }
     const auto summary = impact::run_impact(config, run);
     if (options.json) {
-      std::cout << summary_json(summary).dump(2) << "\n";
+      craterkit::cli::print_json(summary_json(summary));
       return;
     }
     print_summary(summary.run, options.out, &summary);
@@ -190,7 +208,7 @@ void run_simulate(const SimulateOptions& options) {
   }
   const auto summary = sph::run_standard_problem(config, run);
   if (options.json) {
-    std::cout << summary_json(summary).dump(2) << "\n";
+    craterkit::cli::print_json(summary_json(summary));
     return;
   }
   print_summary(summary, options.out);
@@ -202,7 +220,9 @@ void add_simulate_command(CLI::App& parent) {
                                     "Run an SPH simulation described by a TOML configuration (e.g. "
                                     "data/examples/sedov.toml)");
   sub->add_option("config", options->config, "Configuration file (TOML)")->required();
-  sub->add_option("--out", options->out, "Output directory (snapshots, checkpoint.h5, conservation.csv)");
+  sub->add_option("--out", options->out,
+                  "Output directory (snapshots, checkpoint.h5, conservation.csv); default: CONFIG-run in the "
+                  "current directory, e.g. sedov-run for sedov.toml");
   sub->add_option("--threads", options->threads, "OpenMP threads (default: all cores)");
   sub->add_flag("--resume", options->resume, "Continue from DIR/checkpoint.h5 when it exists");
   sub->add_flag("--json", options->json, "Print the final summary as a JSON object");

@@ -50,7 +50,7 @@ std::vector<std::string> body_names() {
 }
 
 Body load_body(const std::string& name_or_path) {
-  return load_body_file(resolve_data_set(name_or_path, "bodies", "--body"));
+  return load_body_file(resolve_data_set(name_or_path, "bodies", "body"));
 }
 
 Body load_body_file(const std::filesystem::path& path) {

@@ -53,6 +53,7 @@ double differential(const EquilibriumCap& cap, const ProductionPoint& p, double 
 
 struct Likelihood {
   EquilibriumCap cap;
+  std::function<double(double)> clock;  // empty: identity
   double area = 0.0;
   // Unbinned.
   ProductionPoint lower, upper;
@@ -63,8 +64,9 @@ struct Likelihood {
   std::vector<ProductionPoint> edges;
   std::vector<double> bin_counts;
 
-  double operator()(double t) const {
-    if (!(t > 0.0)) return weight_sum > 0.0 ? -kInf : 0.0;
+  double operator()(double age) const {
+    if (!(age > 0.0)) return weight_sum > 0.0 ? -kInf : 0.0;
+    const double t = clock ? clock(age) : age;  // years of present-day flux
     if (!edges.empty()) {
       double sum = 0.0;
       for (std::size_t j = 0; j < bin_counts.size(); ++j) {
@@ -107,6 +109,11 @@ double density_quantile(const std::vector<double>& grid, const std::vector<doubl
 
 AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& production,
                           const AgeFitOptions& options) {
+  if (counts.buffered && !options.weight_by_fraction) {
+    throw InputError(counts.source +
+                     ": buffered counts (reference areas) need their weights: counting each crater whole is "
+                     "not allowed for them");
+  }
   validate(counts);
   validate(options.cap);
   if (!(options.max_age > 0.0))
@@ -115,6 +122,18 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
   AgeEstimate out;
   Likelihood like;
   like.cap = options.cap;
+  like.clock = options.clock;
+  // Age in years from years of present-day flux (the inverse of the clock, by bisection).
+  const auto age_of = [&](double tau) {
+    if (!options.clock) return tau;
+    double lo = 0.0, hi = options.max_age;
+    while (options.clock(hi) < tau && hi < 1e3 * options.max_age) hi *= 2.0;
+    for (int it = 0; it < 200 && hi - lo > 1e-13 * hi; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (options.clock(mid) < tau ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
   like.area = counts.area;
 
   // Cumulative points for the classical fit: (D, N(>=D) per m^2).
@@ -170,8 +189,9 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
       if (d < dmin || d >= options.max_diameter) continue;
       like.craters.push_back(options.cap.enabled ? evaluate(production, d, true)
                                                  : ProductionPoint{d, 0.0, 0.0});
-      like.weights.push_back(counts.fractions[idx]);
-      like.weight_sum += counts.fractions[idx];
+      const double weight = options.weight_by_fraction ? counts.fractions[idx] : 1.0;
+      like.weights.push_back(weight);
+      like.weight_sum += weight;
       cumulative_points.emplace_back(d, running / counts.area);
     }
     out.craters_in_range = like.weight_sum;
@@ -185,15 +205,25 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
 
   // Coarse logarithmic scan around the uncapped estimate, then a fine grid where the likelihood is
   // within e^-40 of its maximum.
-  const double t_guess = std::max(out.craters_in_range, 1.0) / (counts.area * out.production_in_range);
+  const double t_guess =
+      age_of(std::max(out.craters_in_range, 1.0) / (counts.area * out.production_in_range));
   const double t_lo = std::min(t_guess * 1e-6, options.max_age * 1e-9);
   const double t_hi = options.max_age;
   const std::size_t n_coarse = 800;
   std::vector<double> coarse(n_coarse), coarse_ll(n_coarse);
   double best = -kInf;
+  // The log-posterior up to a constant: the likelihood, plus ln(d clock/dt) for a prior uniform in density.
+  const auto log_posterior = [&](double t) {
+    double value = like(t);
+    if (options.prior_uniform_in_density && options.clock && std::isfinite(value)) {
+      const double h = 1e-6 * t;
+      value += std::log((options.clock(t + h) - options.clock(t - h)) / (2.0 * h));
+    }
+    return value;
+  };
   for (std::size_t i = 0; i < n_coarse; ++i) {
     coarse[i] = t_lo * std::pow(t_hi / t_lo, static_cast<double>(i) / (n_coarse - 1));
-    coarse_ll[i] = like(coarse[i]);
+    coarse_ll[i] = log_posterior(coarse[i]);
     best = std::max(best, coarse_ll[i]);
   }
   if (!std::isfinite(best))
@@ -218,7 +248,7 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
   for (std::size_t i = 0; i < n; ++i) {
     out.age_grid[i] =
         grid_lo * std::pow(grid_hi / grid_lo, static_cast<double>(i) / static_cast<double>(n - 1));
-    ll[i] = like(out.age_grid[i]);
+    ll[i] = log_posterior(out.age_grid[i]);
     fine_best = std::max(fine_best, ll[i]);
   }
   double total = 0.0;
@@ -247,7 +277,8 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
     auto misfit = [&](double log_t) {
       double s = 0.0;
       for (std::size_t i = 0; i < pts.size(); ++i) {
-        const double model = cumulative(options.cap, pts[i], std::exp(log_t));
+        const double age = std::exp(log_t);
+        const double model = cumulative(options.cap, pts[i], options.clock ? options.clock(age) : age);
         const double r = std::log(cumulative_points[i].second) - std::log(model);
         s += r * r;
       }
@@ -258,6 +289,7 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
       for (std::size_t i = 0; i < pts.size(); ++i)
         log_t += std::log(cumulative_points[i].second / pts[i].rate);
       log_t /= static_cast<double>(pts.size());
+      log_t = std::log(age_of(std::exp(log_t)));
     } else {
       // Golden-section search on ln t (the misfit is unimodal in t for a monotone cap).
       double a = std::log(t_lo), b = std::log(t_hi);
@@ -276,7 +308,13 @@ AgeEstimate fit_model_age(const CraterCounts& counts, const ProductionFunction& 
     out.cumulative_fit_age = std::exp(log_t);
     double n_total = 0.0;  // N(>= D_min of the range)
     for (const auto& point : cumulative_points) n_total = std::max(n_total, point.second * counts.area);
-    out.cumulative_fit_sigma = n_total > 0.0 ? out.cumulative_fit_age / std::sqrt(n_total) : kInf;
+    // sigma of N / sqrt(N) relative, carried through the clock: sigma_t = (tau / sqrt(N)) / (d tau / d t).
+    double rate = 1.0;
+    if (options.clock) {
+      const double t = out.cumulative_fit_age, h = 1e-6 * t;
+      rate = (options.clock(t + h) - options.clock(t - h)) / (2.0 * h) * t / options.clock(t);
+    }
+    out.cumulative_fit_sigma = n_total > 0.0 ? out.cumulative_fit_age / std::sqrt(n_total) / rate : kInf;
   }
   return out;
 }

@@ -188,14 +188,14 @@ FittedLaw grouped_fit_law(const nlohmann::json& json, const std::string& source_
   const std::string listing = " groups: " + group_list(keys);
   if (!selector) {
     throw InputError(source_name + " holds " + std::to_string(keys.size()) +
-                     " group fits; choose one with --group KEY=VALUE[,KEY=VALUE];" + listing);
+                     " group fits; choose one with a group selector KEY=VALUE[,KEY=VALUE];" + listing);
   }
   const GroupKey wanted = parse_group_selector(*selector);
   for (const auto& [column, value] : wanted) {
     if (std::find(columns.begin(), columns.end(), column) == columns.end()) {
       std::string names;
       for (const auto& name : columns) names += (names.empty() ? "" : ", ") + name;
-      throw InputError("--group " + *selector + ": '" + column + "' is not a grouping column of " +
+      throw InputError("group selector " + *selector + ": '" + column + "' is not a grouping column of " +
                        source_name + "; its grouping columns: " + names + ";" + listing);
     }
   }
@@ -207,12 +207,13 @@ FittedLaw grouped_fit_law(const nlohmann::json& json, const std::string& source_
     if (all) matches.push_back(g);
   }
   if (matches.empty())
-    throw InputError("--group " + *selector + " matches no group of " + source_name + ";" + listing);
+    throw InputError("group selector " + *selector + " matches no group of " + source_name + ";" + listing);
   if (matches.size() > 1) {
     std::vector<GroupKey> matching;
     for (std::size_t g : matches) matching.push_back(keys[g]);
-    throw InputError("--group " + *selector + " matches " + std::to_string(matches.size()) + " groups of " +
-                     source_name + " (" + group_list(matching) + "); give more KEY=VALUE pairs");
+    throw InputError("group selector " + *selector + " matches " + std::to_string(matches.size()) +
+                     " groups of " + source_name + " (" + group_list(matching) +
+                     "); give more KEY=VALUE pairs");
   }
   const auto& group = groups[matches.front()];
   const std::string name = source_name + " group " + selector_text(keys[matches.front()]);
@@ -239,10 +240,10 @@ GroupKey parse_group_selector(const std::string& text) {
     const std::string pair = text.substr(start, comma - start);
     const auto eq = pair.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw InputError("--group '" + text + "' is not allowed: " + allowed);
+      throw InputError("group selector '" + text + "' is not allowed: " + allowed);
     const std::string key = pair.substr(0, eq);
     for (const auto& [seen, value] : out) {
-      if (seen == key) throw InputError("--group '" + text + "': '" + key + "' is given twice");
+      if (seen == key) throw InputError("group selector '" + text + "': '" + key + "' is given twice");
     }
     out.emplace_back(key, pair.substr(eq + 1));
     start = comma + 1;
@@ -254,8 +255,8 @@ FittedLaw fitted_law_from_json(const nlohmann::json& json, const std::string& so
                                const std::optional<std::string>& group) {
   if (json.is_object() && json.contains("groups")) return grouped_fit_law(json, source_name, group);
   if (group) {
-    throw InputError("--group " + *group + " is not allowed: " + source_name +
-                     " is a single fit without groups; leave --group out");
+    throw InputError("group selector " + *group + " is not allowed: " + source_name +
+                     " is a single fit without groups; give no group selector");
   }
   return single_fit_law(json, source_name);
 }

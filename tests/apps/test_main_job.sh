@@ -74,6 +74,12 @@ grep -q "started" "$WORK/err" && fail "the second main job ran runs again: $(gre
 cmp -s "$WORK/out/summary.json" "$WORK/first.json" || fail "the second main job changed summary.json"
 cmp -s "$WORK/out/summary.json" <(cat "$WORK/second.json") || fail "--json does not print summary.json"
 
+# A dry run lists the runs and writes nothing.
+"$CK" run --study "$WORK/chain.toml" --out "$WORK/dry" --dry-run >"$WORK/dry.txt" 2>"$WORK/err" ||
+  fail "run --dry-run exited $?: $(cat "$WORK/err")"
+grep -q "impact_speed-60_cohesion-100" "$WORK/dry.txt" || fail "run --dry-run does not list the runs"
+[ -e "$WORK/dry" ] && fail "run --dry-run wrote its output folder"
+
 # Bad flags: status 2, the flag named, nothing written.
 "$CK" run --full --study "$WORK/chain.toml" --out "$WORK/never" >/dev/null 2>"$WORK/err"
 [ "$?" -eq 2 ] && grep -q -- "--full" "$WORK/err" || fail "--full with --study: $(cat "$WORK/err")"

@@ -163,3 +163,26 @@ TEST(ModelAge, EmptyRangeIsAnError) {
   opt.min_diameter = 50.0;
   EXPECT_THROW(ck::fit_model_age(counts, power_production(1e-6, 2.0), opt), craterkit::InputError);
 }
+
+TEST(ModelAge, FractionsWeightOrCountWhole) {
+  // Half of the craters counted with fraction 0.5: weighted, k = sum f; whole, k = n (craterstats' Poisson
+  // fit). Either way the posterior is the Gamma density of shape k + 1.
+  std::mt19937_64 rng(11);
+  const double area = 1e6, c = 1e-6, b = 2.5, dmin = 10.0;
+  auto counts = synthetic(rng, area, 1e7, c, b, dmin);
+  for (std::size_t i = 0; i < counts.fractions.size(); i += 2) counts.fractions[i] = 0.5;
+  const double n = static_cast<double>(counts.diameters.size());
+  double weighted = 0.0;
+  for (double f : counts.fractions) weighted += f;
+  ASSERT_LT(weighted, n - 5.0);
+  const double scale = 1.0 / (area * c * std::pow(dmin, -b));
+  ck::AgeFitOptions opt;
+  opt.min_diameter = dmin;
+  for (const bool weight : {true, false}) {
+    opt.weight_by_fraction = weight;
+    const auto age = ck::fit_model_age(counts, power_production(c, b), opt);
+    const double k = weight ? weighted : n;
+    EXPECT_DOUBLE_EQ(age.craters_in_range, k) << weight;
+    EXPECT_NEAR(gsl_cdf_gamma_P(age.median, k + 1.0, scale), 0.5, 1e-5) << weight;
+  }
+}

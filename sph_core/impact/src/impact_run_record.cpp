@@ -139,7 +139,7 @@ ImpactRunRecord read_run_record(const RunAttributes& a, const std::string& sourc
         throw InputError(
             source + ": attribute " + key +
             " names a boulder but the file does not record the boulders' initial centres (written "
-            "by an older craterkit): give them with --boulders");
+            "by an older craterkit): give the boulders explicitly (craterkit measure: --boulders FILE.json)");
       }
     }
   }

@@ -101,6 +101,7 @@ void read_output(TomlTable s, OutputParameters& o) {
   o.checkpoint_interval_seconds =
       s.number("checkpoint_interval_seconds", o.checkpoint_interval_seconds, 0.0, inf);
   o.conservation_log = s.boolean("conservation_log", o.conservation_log);
+  o.compression = static_cast<int>(s.integer("compression", o.compression, 0, 9));
   s.finish();
 }
 

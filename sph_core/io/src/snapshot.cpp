@@ -1,5 +1,7 @@
 #include "craterkit/sph/io/snapshot.hpp"
 
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "craterkit/common/atomic_file.hpp"
@@ -22,8 +24,12 @@ const std::string& RunAttributes::text(const std::string& key, const std::string
 }
 
 void write_snapshot(const std::filesystem::path& h5, const Particles& particles,
-                    const RunAttributes& attributes) {
-  const detail::ParticleFileOptions options{detail::kind_snapshot, /*visualisation_vectors=*/true};
+                    const RunAttributes& attributes, int compression) {
+  if (compression < 0 || compression > 9) {
+    throw std::invalid_argument("snapshot compression " + std::to_string(compression) + ": allowed 0 .. 9");
+  }
+  const detail::ParticleFileOptions options{detail::kind_snapshot, /*visualisation_vectors=*/true,
+                                            compression};
   write_atomically(h5, [&](const std::filesystem::path& tmp) {
     detail::write_particle_file(tmp, particles, attributes, options);
   });

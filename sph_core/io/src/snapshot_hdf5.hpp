@@ -8,8 +8,8 @@
 #include <string>
 #include <string_view>
 
-#include "craterkit/sph/particles/particles.hpp"
 #include "craterkit/sph/io/snapshot.hpp"
+#include "craterkit/sph/particles/particles.hpp"
 
 namespace craterkit::sph::detail {
 
@@ -20,7 +20,8 @@ inline constexpr const char* kind_checkpoint = "checkpoint";
 
 struct ParticleFileOptions {
   const char* kind = kind_snapshot;
-  bool visualisation_vectors = false;  // also write interleaved position/velocity (n x 3)
+  bool visualisation_vectors = false;  // also write interleaved position/velocity (n x 3) and stress (n x 6)
+  int compression = 0;                 // deflate level of every dataset, 0 (none) .. 9
 };
 
 // Writes the particle file at `path` (not atomically: callers write to a temporary sibling) and

@@ -90,6 +90,11 @@ void uniform_grid(std::ostringstream& xml, const std::string& indent, const std:
   xml << in1 << "<Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n";
   data_item(xml, in2, n + " 3", {"Float", 8}, h5_reference, "velocity");
   xml << in1 << "</Attribute>\n";
+  if (solid_fields) {
+    xml << in1 << "<Attribute Name=\"stress\" AttributeType=\"Tensor6\" Center=\"Node\">\n";
+    data_item(xml, in2, n + " 6", {"Float", 8}, h5_reference, "stress");
+    xml << in1 << "</Attribute>\n";
+  }
   Particles layout;  // empty: only the field names and element types are needed
   layout.solid_fields = solid_fields;
   layout.for_each_field([&](std::string_view field, const auto& values) {

@@ -106,7 +106,8 @@ void SnapshotWriter::write(Simulation& simulation, std::size_t index) {
   auto scope = simulation.timers().measure("output");
   char name[32];
   std::snprintf(name, sizeof name, "snap_%06zu.h5", index);
-  write_snapshot(directory_ / name, simulation.particles(), run_attributes(simulation, record_));
+  write_snapshot(directory_ / name, simulation.particles(), run_attributes(simulation, record_),
+                 compression_);
   write_time_series_xdmf(directory_ / "snapshots.xdmf", find_snapshots(directory_));
   written_.push_back((directory_ / name).string());
 }

@@ -57,8 +57,12 @@ class ConservationRecorder final : public RunObserver {
 // of the final state. Its place in the list of times travels in checkpoints as "next_snapshot".
 class SnapshotWriter final : public RunObserver {
  public:
-  SnapshotWriter(std::filesystem::path directory, std::vector<double> times, RunAttributes record)
-      : directory_(std::move(directory)), times_(std::move(times)), record_(std::move(record)) {}
+  SnapshotWriter(std::filesystem::path directory, std::vector<double> times, RunAttributes record,
+                 int compression = 0)
+      : directory_(std::move(directory)),
+        times_(std::move(times)),
+        record_(std::move(record)),
+        compression_(compression) {}
   bool start(Simulation& simulation, const RunAttributes* checkpoint) override;
   bool after_step(Simulation& simulation) override;
   [[nodiscard]] double next_landing_time() const override;
@@ -73,6 +77,7 @@ class SnapshotWriter final : public RunObserver {
   std::filesystem::path directory_;
   std::vector<double> times_;
   RunAttributes record_;
+  int compression_ = 0;  // deflate level of the snapshots
   std::size_t next_ = 0;
   std::vector<std::string> written_;
 };

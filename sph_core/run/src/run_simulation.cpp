@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "craterkit/common/input_error.hpp"
+#include "craterkit/common/version.hpp"
 #include "craterkit/sph/io/checkpoint.hpp"
 #include "craterkit/sph/io/solver_state.hpp"
 #include "craterkit/sph/run/progress.hpp"
@@ -115,6 +116,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
 
   RunAttributes record = record_in;
   record.texts["problem_name"] = config.name;
+  record.texts["craterkit_version"] = craterkit::version();
+  if (!options.configuration.empty()) record.texts["configuration"] = options.configuration;
   RunSummary summary;
   summary.name = config.name;
   summary.setup = record.texts.count("setup") != 0 ? record.texts.at("setup") : "";
@@ -131,7 +134,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   LateStageReport late_stage_report;
   EjectaLog ejecta_log(out / "ejecta.csv");
   ConservationRecorder conservation(out / "conservation.csv");
-  SnapshotWriter snapshots(out, config.output.snapshot_times, record);
+  SnapshotWriter snapshots(out, config.output.snapshot_times, record, config.output.compression);
   std::vector<RunObserver*> observers;
   if (options.log) observers.push_back(&late_stage_report);
   if (logs_ejecta) observers.push_back(&ejecta_log);

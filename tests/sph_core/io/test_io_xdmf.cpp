@@ -269,7 +269,13 @@ double check_particle_grid(const Element& grid, const fs::path& xml_dir, std::si
   EXPECT_EQ(attributes["velocity"]->attribute("AttributeType"), "Vector");
   check_data_item(attributes["velocity"]->one("DataItem"), xml_dir, "velocity", count + " 3");
   const auto names = field_names(solid_fields);
-  EXPECT_EQ(attributes.size(), names.size() + 1);  // every field + the velocity vector
+  // every field + the velocity vector (+ the stress tensor with solid fields)
+  EXPECT_EQ(attributes.size(), names.size() + (solid_fields ? 2 : 1));
+  EXPECT_EQ(attributes.count("stress"), solid_fields ? 1u : 0u);
+  if (solid_fields && attributes.count("stress") == 1) {
+    EXPECT_EQ(attributes["stress"]->attribute("AttributeType"), "Tensor6");
+    check_data_item(attributes["stress"]->one("DataItem"), xml_dir, "stress", count + " 6");
+  }
   for (const auto& name : names) {
     if (attributes.count(name) == 0) {
       ADD_FAILURE() << "no attribute for field " << name;

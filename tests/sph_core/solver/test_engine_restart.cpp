@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "craterkit/common/version.hpp"
 #include "craterkit/sph/io/checkpoint.hpp"
 #include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/engine_test_helpers.hpp"
@@ -107,6 +108,7 @@ TEST(Restart, SummaryReportsTheIssueFigures) {
   auto config = small_sod(0);
   config.simulation.run.end_time = 0.02;
   config.simulation.output.snapshot_times = {0.0, 0.01};
+  options.configuration = "# the configuration\nsetup = \"sod\"\n";
   const auto s = run_standard_problem(config, options);
   EXPECT_GT(s.particles, 0u);
   EXPECT_GT(s.steps, 0u);
@@ -122,5 +124,13 @@ TEST(Restart, SummaryReportsTheIssueFigures) {
   EXPECT_EQ(s.snapshots.size(), 3u);  // t = 0, 0.01 and the final state
   EXPECT_TRUE(fs::exists(dir / "snapshots.xdmf"));
   EXPECT_TRUE(fs::exists(dir / "conservation.csv"));
+  // Every snapshot and the checkpoint record the code version and the configuration text.
+  RunAttributes snapshot, checkpoint;
+  read_snapshot(s.snapshots.front(), &snapshot);
+  read_checkpoint(dir / "checkpoint.h5", &checkpoint);
+  for (const RunAttributes* a : {&snapshot, &checkpoint}) {
+    EXPECT_EQ(a->texts.at("craterkit_version"), craterkit::version());
+    EXPECT_EQ(a->texts.at("configuration"), options.configuration);
+  }
   fs::remove_all(dir);
 }

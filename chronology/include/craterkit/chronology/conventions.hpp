@@ -18,7 +18,7 @@ inline double apparent_radius_from_rim_diameter(double rim_diameter, const Diame
   return rim_diameter / (2.0 * c.rim_to_apparent);
 }
 
-// Throws InputError naming `what` (e.g. "--rim-to-apparent") unless 1 <= rim_to_apparent <= 2.
+// Throws InputError naming `what` (e.g. "rim_to_apparent") unless 1 <= rim_to_apparent <= 2.
 void validate(const DiameterConvention& c, const std::string& what = "rim_to_apparent");
 
 // Which impactor environment the collision probability and speed describe. Ryugu and Bennu are

@@ -12,6 +12,7 @@
 // without the cap and with unit weights it is the Gamma density t^k exp(-A dr t), dr = r(D_min) - r(D_max).
 // The classical cumulative fit (least squares of log N(>D) over the range, error t/sqrt(N)) is reported
 // alongside for comparison.
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -30,6 +31,19 @@ struct AgeFitOptions {
   // Also the classical cumulative fit. It needs r(D) at every counted crater; the draws of the scaling
   // law's constants (law_propagation.hpp) use only the likelihood and leave it out.
   bool cumulative_fit = true;
+  // How the fraction f_i of a crater (buffered counting) enters the Poisson likelihood of unbinned counts:
+  // true, each crater counts f_i (craterkit's default); false, each crater in the fit range counts once,
+  // whatever its fraction, as craterstats' Poisson fit does. The observed cumulative counts and the
+  // cumulative fit use the fractions either way.
+  bool weight_by_fraction = true;
+  // A flux that changed with time: the expected density is N(>D, t) = clock(t) r(D), with r the present
+  // production rate and clock(t) the age in years of present-day flux that makes as many craters as t years
+  // of the real flux (increasing, clock(0) = 0; e.g. chronology_clock of a chronology_system.hpp system).
+  // Empty: constant flux, clock(t) = t.
+  std::function<double(double)> clock;
+  // The prior on [0, max_age]: uniform in age (false), or uniform in crater density, i.e. proportional to
+  // the flux d clock / dt (true; what craterstats uses). The same for a constant flux.
+  bool prior_uniform_in_density = false;
 };
 
 struct AgeEstimate {

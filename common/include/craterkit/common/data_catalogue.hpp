@@ -26,7 +26,7 @@ inline std::vector<std::string> data_set_names(const std::string& folder) {
 }
 
 // A name or a path: anything with a '/' or ending in ".toml" is a path; anything else a shipped name.
-// Throws InputError naming `what` (e.g. "material", "--body"), the value and the available names.
+// Throws InputError naming `what` (e.g. "material", "body"), the value and the available names.
 inline std::filesystem::path resolve_data_set(const std::string& name_or_path, const std::string& folder,
                                               const std::string& what) {
   const bool is_path = name_or_path.find('/') != std::string::npos || name_or_path.ends_with(".toml");

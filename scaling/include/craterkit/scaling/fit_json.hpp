@@ -47,7 +47,7 @@ struct FittedLaw {
   GroupKey group;                  // the group chosen from a grouped fit (empty for a single fit)
 };
 
-// "KEY=VALUE[,KEY=VALUE]" -> pairs; InputError naming --group otherwise.
+// "KEY=VALUE[,KEY=VALUE]" -> pairs; InputError naming the group selector otherwise.
 GroupKey parse_group_selector(const std::string& text);
 
 // Reads the law ("form", "parameters") and its covariance ("correlation" with the sigmas) of a fit JSON.

@@ -9,8 +9,8 @@
 // name is either the previous complete checkpoint or the new complete one.
 #include <filesystem>
 
-#include "craterkit/sph/particles/particles.hpp"
 #include "craterkit/sph/io/snapshot.hpp"
+#include "craterkit/sph/particles/particles.hpp"
 
 namespace craterkit::sph {
 

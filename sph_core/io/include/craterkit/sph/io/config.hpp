@@ -15,7 +15,7 @@
 //                velocity_change, block_levels
 //   [neighbours] skin, sort_interval (steps between curve sorts)
 //   [output]     snapshot_times = [...] (s), checkpoint_interval_steps, checkpoint_interval_seconds,
-//                conservation_log (bool)
+//                conservation_log (bool), compression (0: none .. 9: deflate level of the snapshots)
 // Every key has a default (the scenario's, see parse_simulation_config); unknown keys, wrong types and
 // out-of-range values are craterkit::InputError naming the key, the value and what is allowed.
 #include <cstdint>
@@ -37,6 +37,7 @@ struct OutputParameters {
   std::uint64_t checkpoint_interval_steps = 0;  // 0: none by step count
   double checkpoint_interval_seconds = 600.0;   // wall seconds between checkpoints (0: none)
   bool conservation_log = true;
+  int compression = 0;  // deflate level of the snapshots' datasets, 0 (none) .. 9
 };
 
 struct SimulationConfig {

@@ -41,8 +41,9 @@ struct RunAttributes {
 // Throws std::invalid_argument if the fields of `particles` differ in length or an attribute name is
 // reserved, std::runtime_error if the file cannot be written; in both cases nothing is left under
 // either final name that was not there before.
+// compression: deflate level 0 (none) .. 9 of every dataset (readers need nothing special).
 void write_snapshot(const std::filesystem::path& h5, const Particles& particles,
-                    const RunAttributes& attributes);
+                    const RunAttributes& attributes, int compression = 0);
 
 // Reads every field of a snapshot (or checkpoint). Throws craterkit::InputError naming the path and
 // what is wrong if the file is missing, not HDF5, not a craterkit particle file, or a field is missing

@@ -29,6 +29,9 @@ struct RunOptions {
   bool resume = false;                     // continue from output_directory/checkpoint.h5 if present
   bool progress = true;                    // the progress line on stderr
   bool log = true;                         // late-stage messages on stderr
+  // The text of the configuration the run was set up from, stored in every snapshot and checkpoint as the
+  // root attribute `configuration` (empty: not stored).
+  std::string configuration;
 };
 
 struct RunSummary {
