@@ -101,7 +101,8 @@ void draw_figure(const nlohmann::json& out, const AgeOptions& o, const std::file
   const std::filesystem::path figure(*o.plot);
   const auto data_path = craterkit::temporary_sibling(figure).string() + ".json";
   craterkit::write_text_atomically(data_path, out.dump());
-  const int status = craterkit::cli::run_python({script.string(), data_path, figure.string(), o.presentation});
+  const int status =
+      craterkit::cli::run_python({script.string(), data_path, figure.string(), o.presentation});
   std::error_code ignored;
   std::filesystem::remove(data_path, ignored);
   if (status != 0)

@@ -17,13 +17,14 @@ namespace craterkit::cli {
 inline const std::vector<double> kMainJobCohesions{0.0, 0.05, 0.2, 0.5, 1.0, 2.0};
 
 // Each live run against the row of the same run in `shipped` (same configuration, same engine: the radii
-// must agree; the engine is deterministic and independent of the thread count, docs/validation.md).
+// agree exactly when the checkpoints fall on the same steps, and to the late stage's chaotic scatter
+// otherwise).
 nlohmann::json compare_with_shipped(const scaling::RadiiTable& live, const scaling::RadiiTable& shipped,
                                     std::string& report);
 
 // The Ceres fit of the point-source law (Housen & Holsapple 2011 form, nu = 0.4 fixed: the engine's runs all
-// have one density ratio, docs/physics.md section 6) to every row of `table`, against the published
-// Ryugu constants (data/scaling/jutzi2022_ryugu.toml).
+// have one density ratio, docs/physics.md section 6; unweighted, see the .cpp) to every row of `table`,
+// against the published Ryugu constants (data/scaling/jutzi2022_ryugu.toml).
 scaling::FitResult fit_engine_radii(const scaling::RadiiTable& table, nlohmann::json& out,
                                     std::string& report);
 

@@ -131,7 +131,8 @@ void run_main_job(const MainJobOptions& o) {
         plan, study::count_particles(s, std::filesystem::read_symlink("/proc/self/exe"), jobs), o.json);
     if (!o.json) {
       fmt::print("then: the fit of {}, the SCI crater, rates and ages per cohesion into {}\n",
-                 default_study ? data_file(kShippedTable).string() : (plan.out / "radii.csv").string(), o.out);
+                 default_study ? data_file(kShippedTable).string() : (plan.out / "radii.csv").string(),
+                 o.out);
     }
     return;
   }

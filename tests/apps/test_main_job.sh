@@ -80,6 +80,24 @@ cmp -s "$WORK/out/summary.json" <(cat "$WORK/second.json") || fail "--json does 
 grep -q "impact_speed-60_cohesion-100" "$WORK/dry.txt" || fail "run --dry-run does not list the runs"
 [ -e "$WORK/dry" ] && fail "run --dry-run wrote its output folder"
 
+# The default's live runs are runs of the shipped study, found in its shipped table by name.
+"$CK" sweep "$CK_DATA/studies/main_job.toml" --out "$WORK/mj" --dry-run --json >"$WORK/mj.json" 2>"$WORK/err" ||
+  fail "the default study does not plan: $(cat "$WORK/err")"
+"$CK" sweep "$CK_DATA/studies/cohesion_size_coarse.toml" --out "$WORK/csc" --dry-run --json >"$WORK/csc.json" \
+  2>"$WORK/err" || fail "the shipped study does not plan: $(cat "$WORK/err")"
+$PY - "$WORK" "$CK_DATA/radii/cohesion_size_coarse.csv" <<'PYEOF' || fail "the default's runs are not the shipped study's"
+import csv, json, sys
+w, table = sys.argv[1], sys.argv[2]
+live = {r["name"]: r for r in json.load(open(w + "/mj.json"))}
+study = {r["name"]: r for r in json.load(open(w + "/csc.json"))}
+rows = list(csv.DictReader(line for line in open(table) if not line.startswith("#")))
+assert len(rows) == len(study), (len(rows), len(study))
+assert {r["run"] for r in rows} == set(study), "the shipped table is not the shipped study's"
+for name, run in live.items():
+    assert name in study, name
+    assert {k: v for k, v in run.items() if k != "index"} == {k: v for k, v in study[name].items() if k != "index"}, name
+PYEOF
+
 # Bad flags: status 2, the flag named, nothing written.
 "$CK" run --full --study "$WORK/chain.toml" --out "$WORK/never" >/dev/null 2>"$WORK/err"
 [ "$?" -eq 2 ] && grep -q -- "--full" "$WORK/err" || fail "--full with --study: $(cat "$WORK/err")"
