@@ -178,7 +178,7 @@ void add_run_command(CLI::App& parent) {
   sub->add_option("--out", options->out, "Folder of the runs and results (report.md, summary.json, fit.json)")
       ->capture_default_str();
   sub->add_flag("--full", options->full,
-                "Run the whole shipped cohesion x size study live (about 20 runs) and fit it");
+                "Run the whole shipped cohesion x size study live (25 runs, about an hour on 2 cores) and fit it");
   sub->add_option("--study", options->study, "Run this study (docs/sweep.md) live and fit its craters");
   sub->add_option("--jobs", options->jobs, "Runs at once (default: the cores, at most the runs)");
   sub->add_option("--threads", options->threads, "OpenMP threads per run (default: cores / jobs)");
