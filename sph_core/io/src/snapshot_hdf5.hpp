@@ -8,8 +8,8 @@
 #include <string>
 #include <string_view>
 
-#include "craterkit/sph/particles/particles.hpp"
 #include "craterkit/sph/io/snapshot.hpp"
+#include "craterkit/sph/particles/particles.hpp"
 
 namespace craterkit::sph::detail {
 
@@ -40,6 +40,9 @@ struct ParticleFileHeader {
   bool solid_fields = false;  // holds the solid-mechanics group (Particles::solid_fields)
 };
 ParticleFileHeader read_particle_file_header(const std::filesystem::path& path);
+
+// Writes the integrity record (user block: length and hash of the rest) of a closed particle file.
+void seal_particle_file(const std::filesystem::path& path);
 
 // Flushes a written file to stable storage (fsync); throws std::runtime_error on failure.
 void sync_to_disk(const std::filesystem::path& file);
