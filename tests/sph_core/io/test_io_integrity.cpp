@@ -1,5 +1,5 @@
-// Integrity of particle files: a damaged checkpoint is an error naming the file, never a silently different
-// state.
+// Integrity of particle files and resumable logs: a damaged checkpoint is an error naming the file, never a
+// silently different state; a resumed log that lost rows or is missing is an error, never a new start.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -11,6 +11,7 @@
 
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/io/checkpoint.hpp"
+#include "craterkit/sph/io/step_csv_log.hpp"
 #include "sph_core/test_io_scratch_directory.hpp"
 
 namespace sph = craterkit::sph;
@@ -127,4 +128,42 @@ TEST(ParticleFileIntegrity, ATruncatedCheckpointIsAnErrorNamingTheFile) {
       EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
     }
   }
+}
+
+// A resumed log checks that it still holds the rows the checkpoint counted.
+TEST(StepCsvLogResume, AMissingOrTruncatedLogIsAnErrorNamingTheFile) {
+  const ScratchDirectory dir("log_resume");
+  const auto csv = dir / "growth.csv";
+  {
+    sph::StepCsvLog log(csv, "time,step,value", 1);
+    for (int step = 0; step <= 40; step += 10) log.append("0.5," + std::to_string(step) + ",1");
+    EXPECT_EQ(log.rows(), 5u);
+  }
+  const std::string whole = read_bytes(csv);
+  {
+    const sph::StepCsvLog resumed(csv, "time,step,value", 1, 30, 4);
+    EXPECT_EQ(resumed.rows(), 4u);  // rows of steps 0 to 30
+  }
+  write_bytes(csv, whole);
+  // Cut after the row of step 10: two rows up to step 30 where the checkpoint counted four.
+  write_bytes(csv, whole.substr(0, whole.find("0.5,20")));
+  try {
+    const sph::StepCsvLog resumed(csv, "time,step,value", 1, 30, 4);
+    ADD_FAILURE() << "a truncated log was resumed";
+  } catch (const craterkit::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(csv.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("holds 2 rows"), std::string::npos) << what;
+    EXPECT_NE(what.find("held 4"), std::string::npos) << what;
+  }
+  fs::remove(csv);
+  try {
+    const sph::StepCsvLog resumed(csv, "time,step,value", 1, 30, 4);
+    ADD_FAILURE() << "a missing log was started anew";
+  } catch (const craterkit::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(csv.string() + ": missing"), std::string::npos) << e.what();
+  }
+  // Without an expected count (a checkpoint of an older version) a missing log starts anew, as before.
+  const sph::StepCsvLog fresh(csv, "time,step,value", 1, 30);
+  EXPECT_EQ(fresh.rows(), 0u);
 }
