@@ -84,5 +84,24 @@ expect_refusal "--out a file" "exists and is not a folder" "$CK" simulate "$WORK
 expect_refusal "fit --out in a missing folder" "--out $WORK/none/fit.json" \
   "$CK" fit "$DATA/examples/radii_example.csv" --out "$WORK/none/fit.json"
 
+# --- Values that must not get through.
+expect_refusal "scale overflowing" "(the numbers overflow)" "$CK" scale --params jutzi2022_ryugu --impactor-radius 1e300 --gravity 1e-4 --target-density 1200 \
+  --impactor-density 2700 --velocity 2000 --strength 0.05
+expect_refusal "rates with an empty list element" "--cohesion 0,,1: an empty element" "$CK" rates --params jutzi2022_ryugu \
+  --body ryugu --cohesion 0,,1 --q -4 --diameters 22,36
+expect_refusal "rates with a trailing comma" "--diameters 22,36,: an empty element" "$CK" rates --params jutzi2022_ryugu \
+  --body ryugu --cohesion 0,1 --q -4 --diameters 22,36,
+sed 's/^Total_area = 0.8 <km^2>/Total_area = 800000 <m^2>/' "$DATA/craters/ryugu_synthetic_unit.scc" >"$WORK/m2.scc"
+expect_refusal "an .scc area in m^2" "the unit must be <km^2>" "$CK" age "$WORK/m2.scc" --params jutzi2022_ryugu \
+  --body ryugu --cohesion 0.05
+sed 's/^0.11955\t/119.55\t/' "$DATA/craters/ryugu_synthetic_unit.scc" >"$WORK/big.scc"
+expect_refusal "a crater larger than the body" "m is larger than" "$CK" age "$WORK/big.scc" --params jutzi2022_ryugu \
+  --body ryugu --cohesion 0.05
+printf '\xef\xbb\xbf' >"$WORK/bom.csv" && cat "$DATA/examples/radii_example.csv" >>"$WORK/bom.csv"
+"$CK" fit "$WORK/bom.csv" --form hh2011 --fix nu=0.4 --json >"$WORK/bom.json" 2>"$WORK/err" ||
+  fail "a radii table with a UTF-8 byte-order mark exited $? ($(cat "$WORK/err"))"
+"$CK" fit "$DATA/examples/radii_example.csv" --form hh2011 --fix nu=0.4 --json >"$WORK/plain.json" 2>/dev/null
+cmp -s <(grep -v '\.csv' "$WORK/bom.json") <(grep -v '\.csv' "$WORK/plain.json") || fail "the byte-order mark changed the fit"
+
 [ "$failures" -eq 0 ] && echo "all guard checks passed"
 exit "$failures"
