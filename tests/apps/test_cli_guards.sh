@@ -102,6 +102,10 @@ printf '\xef\xbb\xbf' >"$WORK/bom.csv" && cat "$DATA/examples/radii_example.csv"
   fail "a radii table with a UTF-8 byte-order mark exited $? ($(cat "$WORK/err"))"
 "$CK" fit "$DATA/examples/radii_example.csv" --form hh2011 --fix nu=0.4 --json >"$WORK/plain.json" 2>/dev/null
 cmp -s <(grep -v '\.csv' "$WORK/bom.json") <(grep -v '\.csv' "$WORK/plain.json") || fail "the byte-order mark changed the fit"
+expect_refusal "measure with a tiny radial step" "radial_step 1e-12 m: 5e+10 samples per ray" "$CK" measure \
+  "$WORK/a/snap_000000.h5" --rho-initial 1 --spacing 0.01 --max-radius 0.05 --radial-step 1e-12
+expect_refusal "measure with too many azimuths" "--azimuths 100000" "$CK" measure "$WORK/a/snap_000000.h5" \
+  --rho-initial 1 --spacing 0.01 --azimuths 100000
 
 [ "$failures" -eq 0 ] && echo "all guard checks passed"
 exit "$failures"
