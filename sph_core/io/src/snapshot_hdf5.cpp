@@ -438,6 +438,31 @@ void read_field(const std::filesystem::path& path, hid_t file, std::string_view 
   }
 }
 
+// HDF5 closes the files it still knows of when the program exits; a file whose close failed (a full disk)
+// crashes the HDF5 1.10 library there. Every file here is closed explicitly, so that clean-up is not needed.
+const bool hdf5_clean_up_at_exit_disabled = [] {
+  H5dont_atexit();
+  return true;
+}();
+
+// A full disk found before HDF5 writes anything: the size of the file to be written (the fields, the
+// visualisation copies, a margin for the metadata) against the free space of its folder.
+void require_free_space(const std::filesystem::path& path, const Particles& particles,
+                        const ParticleFileOptions& options) {
+  std::uintmax_t bytes = 64u << 10;
+  particles.for_each_field(
+      [&](std::string_view, const auto& field) { bytes += field.size() * sizeof(field[0]); });
+  if (options.visualisation_vectors)
+    bytes += particles.size() * (2 * 3 * sizeof(double) + sizeof(std::int64_t));
+  std::error_code ec;
+  const auto parent = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  const auto space = std::filesystem::space(parent, ec);
+  if (!ec && space.available < bytes) {
+    write_failure(path, "the disk is full: " + std::to_string(space.available) + " bytes free in " +
+                            parent.string() + ", about " + std::to_string(bytes) + " needed");
+  }
+}
+
 }  // namespace
 
 void sync_to_disk(const std::filesystem::path& file) {
@@ -460,6 +485,7 @@ void write_particle_file(const std::filesystem::path& path, const Particles& par
   check_attribute_names(attributes);
   const SilenceHdf5Errors silence;
   const std::size_t n = particles.size();
+  require_free_space(path, particles, options);
 
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
