@@ -490,8 +490,9 @@ void write_particle_file(const std::filesystem::path& path, const Particles& par
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
-  H5Pset_obj_track_times(fcpl.get(), 0);          // root group without modification times (see write_dataset)
-  H5Pset_userblock(fcpl.get(), integrity_block);  // room for the integrity record (seal_particle_file)
+  H5Pset_obj_track_times(fcpl.get(), 0);  // root group without modification times (see write_dataset)
+  if (options.integrity_record)
+    H5Pset_userblock(fcpl.get(), integrity_block);  // room for the integrity record (seal_particle_file)
   Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose);
   if (!file.valid())
     write_failure(path, "cannot create the file (does the directory exist and is it writable?)");
@@ -538,7 +539,7 @@ void write_particle_file(const std::filesystem::path& path, const Particles& par
 
   if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0 || !file.close())
     write_failure(path, "cannot flush and close it");
-  seal_particle_file(path);
+  if (options.integrity_record) seal_particle_file(path);
   sync_to_disk(path);
 }
 

@@ -21,6 +21,7 @@ inline constexpr const char* kind_checkpoint = "checkpoint";
 struct ParticleFileOptions {
   const char* kind = kind_snapshot;
   bool visualisation_vectors = false;  // also write interleaved position/velocity (n x 3)
+  bool integrity_record = true;        // false: a file as earlier versions wrote it (for tests and fuzzing)
 };
 
 // Writes the particle file at `path` (not atomically: callers write to a temporary sibling) and
