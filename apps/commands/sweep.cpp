@@ -49,6 +49,7 @@ void check_flags(const SweepCommandOptions& o) {
   }
   if (o.study.empty()) throw InputError("a study file is required (craterkit sweep STUDY.toml --out DIR)");
   if (o.out.empty()) throw InputError("--out DIR is required: the folder of the study's runs and tables");
+  check_output_folder("--out", o.out);
   if (o.jobs < 1) throw InputError(fmt::format("--jobs {}: must be >= 1", o.jobs));
   if (o.jobs > max_threads())
     throw InputError(fmt::format("--jobs {}: allowed 1 to {} (four times the processors available)", o.jobs,

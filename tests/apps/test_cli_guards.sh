@@ -81,6 +81,8 @@ expect_refusal "an unknown material" "no_such_material" "$CK" simulate "$WORK/ba
 touch "$WORK/file"
 expect_refusal "--out below a file" "--out $WORK/file/run" "$CK" simulate "$WORK/sod.toml" --out "$WORK/file/run" --quiet
 expect_refusal "--out a file" "exists and is not a folder" "$CK" simulate "$WORK/sod.toml" --out "$WORK/file" --quiet
+expect_refusal "sweep --out below a file" "--out $WORK/file/sweep" "$CK" sweep "$DATA/studies/example.toml" \
+  --out "$WORK/file/sweep"
 expect_refusal "fit --out in a missing folder" "--out $WORK/none/fit.json" \
   "$CK" fit "$DATA/examples/radii_example.csv" --out "$WORK/none/fit.json"
 
