@@ -30,6 +30,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "json_output.hpp"
 #include "law_uncertainty_flags.hpp"
+#include "output_checks.hpp"
 #include "production_flags.hpp"
 #include "python_plot.hpp"
 #include "scaling_flags.hpp"
@@ -240,6 +241,22 @@ void run_age(const AgeOptions& o) {
   const ck::Body body = ck::load_body(o.production.body);
   craterkit::cli::check_cohesions(o.cohesion);
   const ck::CraterCounts counts = ck::read_crater_counts(o.counts);
+  // A crater wider than the body, or a counting area larger than its surface, is a unit or file mix-up.
+  const double body_diameter = 2.0 * body.mean_radius;
+  auto check_diameter = [&](double d) {
+    if (body_diameter > 0.0 && d > body_diameter) {
+      throw InputError(
+          fmt::format("{}: a crater of diameter {:g} m is larger than {} ({:g} m across); are the "
+                      "diameters in the file's units (km in .scc/.diam)?",
+                      o.counts, d, body.name, body_diameter));
+    }
+  };
+  for (const double d : counts.diameters) check_diameter(d);
+  for (const auto& bin : counts.bins) check_diameter(bin.diameter);
+  if (body.surface_area > 0.0 && counts.area > 1.05 * body.surface_area) {
+    throw InputError(fmt::format("{}: the counting area {:g} m^2 is larger than the surface of {} ({:g} m^2)",
+                                 o.counts, counts.area, body.name, body.surface_area));
+  }
 
   const auto setup = craterkit::cli::resolve_production_flags(o.production, o.scaling, body,
                                                               ck::load_population(o.population));
@@ -394,9 +411,12 @@ void add_age_command(CLI::App& parent) {
   craterkit::cli::add_scaling_flags(*sub, o->scaling);
   craterkit::cli::add_production_flags(*sub, o->production);
   craterkit::cli::add_law_uncertainty_flags(*sub, o->uncertainty);
-  sub->add_option("--cohesion", o->cohesion,
-                  "Cohesions Y of the scaling law, Pa (comma-separated); one age each")
-      ->delimiter(',');
+  sub->add_option_function<std::vector<std::string>>(
+         "--cohesion",
+         [o](const std::vector<std::string>& items) {
+           o->cohesion = craterkit::cli::number_list("--cohesion", items);
+         },
+         "Cohesions Y of the scaling law, Pa (comma-separated); one age each");
   sub->add_option(
          "--prior", o->prior,
          "With --chronology: the prior is uniform in age, or in crater density (density: proportional to "

@@ -21,6 +21,7 @@
 #include "craterkit/scaling/radii_table.hpp"
 #include "fit_report.hpp"
 #include "json_output.hpp"
+#include "output_checks.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -83,6 +84,7 @@ void run_fit(const FitCommandOptions& options) {
     throw InputError(fmt::format("--starts {} is not allowed: must be between 1 and 1000", options.starts));
   }
   fit_options.starts = options.starts;
+  if (options.out) check_output_file("--out", *options.out);
   fit_options.shared_strength = options.shared_strength;
   scaling::GroupedFitOptions grouped_options;
   grouped_options.fit = fit_options;

@@ -17,6 +17,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/impact/impact_run_record.hpp"
 #include "craterkit/sph/io/snapshot.hpp"
+#include "output_checks.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -130,9 +131,9 @@ impact::CraterMeasurementOptions measurement_options(const MeasureOptions& optio
     m.centre = {options.centre[0], options.centre[1]};
   }
   m.quarter_symmetric = m.quarter_symmetric || options.quarter;
-  if (options.azimuths < 4 || options.azimuths % 4 != 0) {
-    throw InputError(
-        fmt::format("--azimuths {} is not allowed: must be a multiple of 4, >= 4", options.azimuths));
+  if (options.azimuths < 4 || options.azimuths % 4 != 0 || options.azimuths > 3600) {
+    throw InputError(fmt::format("--azimuths {} is not allowed: must be a multiple of 4 from 4 to 3600",
+                                 options.azimuths));
   }
   for (const auto& [flag, value] :
        {std::pair{"--max-radius", options.max_radius.value_or(0.0)},
@@ -151,6 +152,7 @@ impact::CraterMeasurementOptions measurement_options(const MeasureOptions& optio
 }
 
 void run_measure(const MeasureOptions& options) {
+  if (options.out) check_output_folder("--out", *options.out);
   sph::RunAttributes attributes;
   const sph::Particles particles = sph::read_snapshot(options.snapshot, &attributes);
   const impact::CraterMeasurement result =

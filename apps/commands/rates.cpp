@@ -19,6 +19,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "json_output.hpp"
 #include "law_uncertainty_flags.hpp"
+#include "output_checks.hpp"
 #include "production_flags.hpp"
 #include "scaling_flags.hpp"
 
@@ -82,6 +83,16 @@ void run_rates(const RatesOptions& o) {
       const double a = law(ck::apparent_radius_from_rim_diameter(D, setup.diameter), speed);
       const double rate = ck::crater_production_rate(setup, law, D);
       if (k == 0) first_rate = rate;
+      // A result that is not a finite number is an error naming its inputs, never a printed "nan".
+      if (!std::isfinite(a) || !std::isfinite(rate) || !std::isfinite(rate / first_rate)) {
+        throw InputError(fmt::format(
+            "--diameters {:g} with --cohesion {:g}: the {} is {} (the inputs overflow or leave the impactor "
+            "population's range); give values of physical size",
+            D, o.cohesion[k], !std::isfinite(a) ? "impactor radius" : "crater production rate",
+            !std::isfinite(a)      ? a
+            : !std::isfinite(rate) ? rate
+                                   : rate / first_rate));
+      }
       nlohmann::json row = {{"crater_diameter", D},
                             {"cohesion", o.cohesion[k]},
                             {"impactor_radius", a},
@@ -165,12 +176,21 @@ void add_rates_command(CLI::App& parent) {
   craterkit::cli::add_scaling_flags(*sub, o->scaling);
   craterkit::cli::add_production_flags(*sub, o->production);
   craterkit::cli::add_law_uncertainty_flags(*sub, o->uncertainty);
-  sub->add_option("--cohesion", o->cohesion,
-                  "Cohesions Y of the scaling law, Pa (comma-separated); rates are relative to the first")
-      ->delimiter(',')
+  sub->add_option_function<std::vector<std::string>>(
+         "--cohesion",
+         [o](const std::vector<std::string>& items) {
+           o->cohesion = craterkit::cli::number_list("--cohesion", items);
+         },
+         "Cohesions Y of the scaling law, Pa (comma-separated); rates are relative to the first")
+
       ->required();
-  sub->add_option("--diameters", o->diameters, "Rim-to-rim crater diameters, m (comma-separated)")
-      ->delimiter(',')
+  sub->add_option_function<std::vector<std::string>>(
+         "--diameters",
+         [o](const std::vector<std::string>& items) {
+           o->diameters = craterkit::cli::number_list("--diameters", items);
+         },
+         "Rim-to-rim crater diameters, m (comma-separated)")
+
       ->required();
   sub->add_option("--q", o->q, "Single power-law impactor population dN/da ~ a^q (relative rates only)");
   sub->add_option(

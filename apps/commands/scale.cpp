@@ -63,6 +63,20 @@ void run_scale(const ScaleOptions& options) {
   const auto pi = scaling::pi_groups(impactor, target);
   const auto regime = scaling::regime(inputs.law, impactor, target);
   const double pi_r = crater_radius * std::cbrt(target.density / scaling::impactor_mass(impactor));
+  // Values so large or small that the arithmetic overflows give inf or NaN: an error, never a printed
+  // result.
+  for (const auto& [name, value] :
+       {std::pair{"crater radius", crater_radius}, std::pair{"impactor radius", impactor.radius},
+        std::pair{"impactor mass", scaling::impactor_mass(impactor)}, std::pair{"pi_R", pi_r},
+        std::pair{"pi_2", pi.pi2}, std::pair{"pi_3", pi.pi3}, std::pair{"pi_4", pi.pi4}}) {
+    if (!std::isfinite(value)) {
+      throw InputError(fmt::format(
+          "{} {:g}, --impactor-density {:g}, --velocity {:g}, --target-density {:g}, --gravity {:g}, "
+          "--strength {:g}: the {} is {} (the numbers overflow); give values of physical size",
+          given_flag, given, impactor.density, impactor.velocity, target.density, target.gravity,
+          target.strength, name, value));
+    }
+  }
   std::optional<double> gravity_limit;
   std::optional<double> strength_limit;
   if (target.gravity > 0.0 &&

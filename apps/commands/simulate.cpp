@@ -4,10 +4,8 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include <fmt/format.h>
@@ -19,6 +17,7 @@
 #include "craterkit/impact/impact_run.hpp"
 #include "craterkit/sph/run/standard_problem_config.hpp"
 #include "json_output.hpp"
+#include "output_checks.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -28,6 +27,7 @@ struct SimulateOptions {
   std::string out;
   int threads = 0;
   bool resume = false;
+  bool overwrite = false;
   bool json = false;
   bool quiet = false;
   bool dry_run = false;
@@ -156,18 +156,73 @@ void print_summary(const sph::RunSummary& summary, const std::string& out,
   fmt::print("{}", summary.phase_table);
 }
 
+// The files a run writes into its output folder (docs/output.md), which --overwrite removes.
+bool is_run_output(const std::string& name) {
+  static const char* const fixed[] = {"checkpoint.h5",     "snapshots.xdmf",    "conservation.csv",
+                                      "ejecta.csv",        "crater_growth.csv", "crater.json",
+                                      "crater_profile.csv"};
+  for (const char* f : fixed) {
+    if (name == f) return true;
+  }
+  const bool snapshot = name.rfind("snap_", 0) == 0 && (name.ends_with(".h5") || name.ends_with(".xdmf"));
+  const bool temporary = name.size() > 1 && name[0] == '.' && name.find(".tmp.") != std::string::npos;
+  return snapshot || temporary;
+}
+
+// A new run (without --resume) goes into an empty or new folder; with --overwrite, the outputs of an
+// earlier run in it are removed first (other files are left alone).
+void prepare_output_folder(const SimulateOptions& options) {
+  namespace fs = std::filesystem;
+  check_output_folder("--out", options.out);
+  std::error_code ec;
+  if (options.resume || !fs::exists(options.out, ec)) return;
+  std::vector<fs::path> outputs, others;
+  for (const auto& entry : fs::directory_iterator(options.out)) {
+    (is_run_output(entry.path().filename().string()) ? outputs : others).push_back(entry.path());
+  }
+  if (outputs.empty() && others.empty()) return;
+  if (!options.overwrite) {
+    const auto& first = outputs.empty() ? others.front() : outputs.front();
+    throw InputError("--out " + options.out + ": not empty (it holds " + first.filename().string() +
+                     (outputs.size() + others.size() > 1
+                          ? " and " + std::to_string(outputs.size() + others.size() - 1) + " more"
+                          : std::string()) +
+                     "); a new run would mix its files with those. Give --overwrite to replace the outputs "
+                     "of the run there, --resume to continue it, or another folder");
+  }
+  for (const auto& path : outputs) fs::remove(path);
+}
+
+void run_simulate_checked(const SimulateOptions& options);
+
+// A folder this invocation created is removed again when the input turns out to be bad (status 2):
+// nothing is written then.
 void run_simulate(const SimulateOptions& given) {
+  namespace fs = std::filesystem;
   SimulateOptions options = given;
-  if (options.threads < 0)
-    throw InputError("--threads " + std::to_string(options.threads) + ": must be >= 1");
-  if (options.resume && options.out.empty())
-    throw InputError("--resume needs --out DIR (where the checkpoint is)");
-  if (options.out.empty() && !options.dry_run) {
+  if (options.out.empty() && !options.dry_run && !options.resume) {
     // Without --out a run still keeps its output: a folder named after the configuration, in the current
     // directory, said on stderr before the run starts.
-    options.out = std::filesystem::path(options.config).stem().string() + "-run";
+    options.out = fs::path(options.config).stem().string() + "-run";
     std::cerr << "craterkit: no --out given: writing the output to " << options.out << "/\n";
   }
+  std::error_code ec;
+  const bool new_folder = !options.out.empty() && !options.dry_run && !fs::exists(options.out, ec);
+  try {
+    run_simulate_checked(options);
+  } catch (const InputError&) {
+    if (new_folder && fs::exists(options.out, ec) && !fs::exists(fs::path(options.out) / "checkpoint.h5", ec))
+      fs::remove_all(options.out, ec);
+    throw;
+  }
+}
+
+void run_simulate_checked(const SimulateOptions& options) {
+  check_threads("--threads", options.threads);
+  if (options.resume && options.out.empty())
+    throw InputError("--resume needs --out DIR (where the checkpoint is)");
+  if (options.resume && options.overwrite)
+    throw InputError("--resume and --overwrite exclude each other: continue the run in --out, or replace it");
   TomlTable root = TomlTable::parse_file(options.config);
   std::vector<std::string> setups = sph::standard_problem_names();
   setups.push_back("impact");
@@ -177,15 +232,10 @@ void run_simulate(const SimulateOptions& given) {
   run.output_directory = options.out;
   run.resume = options.resume;
   run.progress = !options.quiet;
-  {
-    // The configuration as written, kept in every snapshot and checkpoint (attribute `configuration`).
-    std::ifstream in(options.config, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    run.configuration = text.str();
-  }
   if (setup == "impact") {
     const impact::ImpactConfig config = impact::parse_impact_config(root);
+    run.configuration = root.values_read();
+    if (!options.dry_run && !options.out.empty()) prepare_output_folder(options);
     if (options.dry_run) {
       const impact::ImpactRun set_up = impact::build_impact_run(config);
       print_dry_run(config.simulation.name, setup, set_up.problem, config.simulation.run.end_time,
@@ -201,6 +251,8 @@ void run_simulate(const SimulateOptions& given) {
     return;
   }
   const sph::StandardProblemConfig config = sph::parse_standard_problem_config(root);
+  run.configuration = root.values_read();
+  if (!options.dry_run && !options.out.empty()) prepare_output_folder(options);
   if (options.dry_run) {
     print_dry_run(config.simulation.name, setup, sph::build_standard_problem(config),
                   config.simulation.run.end_time, nullptr, options.json);
@@ -223,8 +275,12 @@ void add_simulate_command(CLI::App& parent) {
   sub->add_option("--out", options->out,
                   "Output directory (snapshots, checkpoint.h5, conservation.csv); default: CONFIG-run in the "
                   "current directory, e.g. sedov-run for sedov.toml");
-  sub->add_option("--threads", options->threads, "OpenMP threads (default: all cores)");
-  sub->add_flag("--resume", options->resume, "Continue from DIR/checkpoint.h5 when it exists");
+  sub->add_option("--threads", options->threads, "OpenMP threads (default: all cores; at most 4 x cores)");
+  sub->add_flag(
+      "--resume", options->resume,
+      "Continue from DIR/checkpoint.h5 when it exists (with the configuration it was started with)");
+  sub->add_flag("--overwrite", options->overwrite,
+                "Replace the outputs of an earlier run in --out DIR (a new run refuses a non-empty folder)");
   sub->add_flag("--json", options->json, "Print the final summary as a JSON object");
   sub->add_flag("--quiet", options->quiet, "No progress line");
   sub->add_flag("--dry-run", options->dry_run,

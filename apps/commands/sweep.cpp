@@ -17,6 +17,7 @@
 #include "craterkit/study/sweep.hpp"
 #include "craterkit/study/sweep_tables.hpp"
 #include "craterkit_version.hpp"
+#include "output_checks.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -48,8 +49,16 @@ void check_flags(const SweepCommandOptions& o) {
   }
   if (o.study.empty()) throw InputError("a study file is required (craterkit sweep STUDY.toml --out DIR)");
   if (o.out.empty()) throw InputError("--out DIR is required: the folder of the study's runs and tables");
+  check_output_folder("--out", o.out);
   if (o.jobs < 1) throw InputError(fmt::format("--jobs {}: must be >= 1", o.jobs));
-  if (o.threads < 0) throw InputError(fmt::format("--threads {}: must be >= 1", o.threads));
+  if (o.jobs > max_threads())
+    throw InputError(fmt::format("--jobs {}: allowed 1 to {} (four times the processors available)", o.jobs,
+                                 max_threads()));
+  // --emit writes a script for other machines: its thread count is not bounded by this one's processors.
+  if (o.emit.empty())
+    check_threads("--threads", o.threads);
+  else if (o.threads < 0)
+    throw InputError(fmt::format("--threads {}: must be >= 1", o.threads));
   if (!o.emit.empty() && o.emit != "slurm")
     throw InputError("--emit '" + o.emit + "' is not allowed: use slurm");
   if (o.task && *o.task < 0) throw InputError(fmt::format("--task {}: must be >= 0", *o.task));

@@ -34,14 +34,21 @@ void add_crater(CraterCounts& c, double diameter, double fraction, const std::st
   c.fractions.push_back(fraction);
 }
 
-// "key = value [<unit>]" -> value, or nothing if the line is not that key.
-bool key_value(const std::string& line, const std::string& key, std::string& value) {
+// "key = value [<unit>]" -> value (and the unit tag, without its brackets, when given), or nothing if the
+// line is not that key.
+bool key_value(const std::string& line, const std::string& key, std::string& value,
+               std::string* unit = nullptr) {
   const auto eq = line.find('=');
   if (eq == std::string::npos) return false;
   if (lower(trim(line.substr(0, eq))) != lower(key)) return false;
   value = trim(line.substr(eq + 1));
-  const auto unit = value.find('<');
-  if (unit != std::string::npos) value = trim(value.substr(0, unit));
+  const auto open = value.find('<');
+  if (open != std::string::npos) {
+    const auto close = value.find('>', open);
+    if (unit != nullptr)
+      *unit = trim(value.substr(open + 1, close == std::string::npos ? std::string::npos : close - open - 1));
+    value = trim(value.substr(0, open));
+  }
   return true;
 }
 
@@ -64,8 +71,12 @@ CraterCounts read_craterstats(const std::string& path, const std::string& area_k
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string line = trim(lines[i]);
     if (line.empty() || line[0] == '#') continue;
-    std::string value;
-    if (key_value(line, area_key, value)) {
+    std::string value, unit;
+    if (key_value(line, area_key, value, &unit)) {
+      if (!unit.empty() && unit != "km^2" && unit != "km2") {
+        throw InputError(where(path, i) + ": " + area_key + " = " + value + " <" + unit +
+                         ">: the unit must be <km^2> (or no tag: km^2); convert the area to km^2");
+      }
       const double km2 = parse_number(value, path, i, area_key);
       if (!(km2 > 0.0))
         throw InputError(where(path, i) + ": " + area_key + " = " + value + " km^2 must be > 0");

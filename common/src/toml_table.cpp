@@ -1,7 +1,9 @@
 #include "craterkit/common/toml_table.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -13,6 +15,8 @@ namespace craterkit {
 
 struct TomlTable::Document {
   toml::table root;
+  // What every getter returned, by dotted key (values_read()).
+  mutable std::map<std::string, std::string> values;
 };
 
 namespace {
@@ -24,7 +28,24 @@ const toml::node* as_node(const void* node) {
   return static_cast<const toml::node*>(node);
 }
 
+// A value as text: numbers with every digit, so that two values that differ print differently.
+std::string value_text(double x) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
+
 }  // namespace
+
+void TomlTable::record(std::string_view k, std::string value) const {
+  document_->values[key(k)] = std::move(value);
+}
+
+std::string TomlTable::values_read() const {
+  std::string out;
+  for (const auto& [k, v] : document_->values) out += k + " = " + v + "\n";
+  return out;
+}
 
 TomlTable::TomlTable(std::shared_ptr<const Document> document, const void* table, std::string name,
                      std::string source)
@@ -93,9 +114,13 @@ double number_of(const toml::node& node, const TomlTable& table, std::string_vie
 double TomlTable::number(std::string_view k, double fallback, double lo, double hi, bool lo_open,
                          bool hi_open) {
   const auto* node = as_node(use(k));
-  if (node == nullptr) return fallback;
+  if (node == nullptr) {
+    record(k, value_text(fallback));
+    return fallback;
+  }
   const double x = number_of(*node, *this, k);
   if (!in_range(x, lo, hi, lo_open, hi_open)) out_of_range(k, x, range_text(lo, hi, lo_open, hi_open));
+  record(k, value_text(x));
   return x;
 }
 
@@ -103,6 +128,7 @@ std::optional<double> TomlTable::optional_number(std::string_view k, double lo, 
                                                  bool hi_open) {
   if (find(k) == nullptr) {
     used_.insert(std::string(k));
+    record(k, "(absent)");
     return std::nullopt;
   }
   return number(k, 0.0, lo, hi, lo_open, hi_open);
@@ -120,27 +146,35 @@ void TomlTable::out_of_range(std::string_view k, double value, const std::string
 
 std::int64_t TomlTable::integer(std::string_view k, std::int64_t fallback, std::int64_t lo, std::int64_t hi) {
   const auto* node = as_node(use(k));
-  if (node == nullptr) return fallback;
+  if (node == nullptr) {
+    record(k, std::to_string(fallback));
+    return fallback;
+  }
   if (!node->is_integer()) fail(k, "expected an integer");
   const std::int64_t x = node->as_integer()->get();
   if (x < lo || x > hi) {
     fail(k, "value " + std::to_string(x) + " out of range: allowed [" + std::to_string(lo) + ", " +
                 std::to_string(hi) + "]");
   }
+  record(k, std::to_string(x));
   return x;
 }
 
 bool TomlTable::boolean(std::string_view k, bool fallback) {
   const auto* node = as_node(use(k));
-  if (node == nullptr) return fallback;
-  if (!node->is_boolean()) fail(k, "expected true or false");
-  return node->as_boolean()->get();
+  if (node != nullptr && !node->is_boolean()) fail(k, "expected true or false");
+  const bool value = node == nullptr ? fallback : node->as_boolean()->get();
+  record(k, value ? "true" : "false");
+  return value;
 }
 
 std::optional<std::string> TomlTable::optional_text(std::string_view k,
                                                     const std::vector<std::string>& allowed) {
   const auto* node = as_node(use(k));
-  if (node == nullptr) return std::nullopt;
+  if (node == nullptr) {
+    record(k, "(absent)");
+    return std::nullopt;
+  }
   if (!node->is_string()) fail(k, "expected a string");
   std::string v = node->as_string()->get();
   if (!allowed.empty()) {
@@ -153,12 +187,15 @@ std::optional<std::string> TomlTable::optional_text(std::string_view k,
     if (!ok) fail(k, "value \"" + v + "\" not allowed: one of " + list);
   }
   if (v.empty()) fail(k, "must not be empty");
+  record(k, "\"" + v + "\"");
   return v;
 }
 
 std::string TomlTable::text(std::string_view k, const std::string& fallback,
                             const std::vector<std::string>& allowed) {
-  return optional_text(k, allowed).value_or(fallback);
+  auto v = optional_text(k, allowed);
+  if (!v) record(k, "\"" + fallback + "\"");
+  return v.value_or(fallback);
 }
 
 std::string TomlTable::required_text(std::string_view k, const std::string& what,
@@ -171,7 +208,10 @@ std::string TomlTable::required_text(std::string_view k, const std::string& what
 std::optional<std::vector<double>> TomlTable::numbers(std::string_view k, std::optional<std::size_t> count,
                                                       bool allow_infinite) {
   const auto* node = as_node(use(k));
-  if (node == nullptr) return std::nullopt;
+  if (node == nullptr) {
+    record(k, "(absent)");
+    return std::nullopt;
+  }
   const std::string expected =
       count ? "an array of " + std::to_string(*count) + " numbers" : std::string("an array of numbers");
   const toml::array* array = node->as_array();
@@ -190,6 +230,9 @@ std::optional<std::vector<double>> TomlTable::numbers(std::string_view k, std::o
     }
     out.push_back(v);
   }
+  std::string listed;
+  for (const double v : out) listed += (listed.empty() ? "" : ", ") + value_text(v);
+  record(k, "[" + listed + "]");
   return out;
 }
 
@@ -203,7 +246,10 @@ std::vector<double> TomlTable::required_numbers(std::string_view k, std::optiona
 
 std::optional<std::vector<std::string>> TomlTable::texts(std::string_view k) {
   const auto* node = as_node(use(k));
-  if (node == nullptr) return std::nullopt;
+  if (node == nullptr) {
+    record(k, "(absent)");
+    return std::nullopt;
+  }
   const toml::array* array = node->as_array();
   if (array == nullptr) fail(k, "expected an array of strings");
   std::vector<std::string> out;
@@ -214,6 +260,9 @@ std::optional<std::vector<std::string>> TomlTable::texts(std::string_view k) {
     }
     out.push_back(e.as_string()->get());
   }
+  std::string listed;
+  for (const auto& v : out) listed += (listed.empty() ? "\"" : ", \"") + v + "\"";
+  record(k, "[" + listed + "]");
   return out;
 }
 
@@ -259,8 +308,9 @@ void reject_keys_outside(const TomlTable& table, const toml::table* keys,
     if (allowed.count(name) == 0) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(table.source() + ": unknown key " + table.key(name) +
-                       (list.empty() ? std::string(" (no keys are allowed here)") : " (allowed here: " + list + ")"));
+      throw InputError(
+          table.source() + ": unknown key " + table.key(name) +
+          (list.empty() ? std::string(" (no keys are allowed here)") : " (allowed here: " + list + ")"));
     }
   }
 }

@@ -83,6 +83,8 @@ RadiiTable parse_radii_csv(std::istream& in, const std::string& source_name) {
   int line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    // A UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name.
+    if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     const std::string content = trim(line);
     if (content.empty() || content.front() == '#') continue;
     const auto cells = split(content);

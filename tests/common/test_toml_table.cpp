@@ -270,3 +270,24 @@ TEST(TomlTable, KeysAreSortedAndContainsDoesNotCountAsRead) {
 }
 
 }  // namespace
+
+// values_read(): every value the getters returned, defaults included, one sorted line per dotted key; two
+// documents read alike list the same text exactly when the values seen were the same.
+TEST(TomlTable, ValuesReadListsWhatTheGettersReturnedWithDefaults) {
+  auto read = [](const std::string& text) {
+    auto root = craterkit::TomlTable::parse(text, "test.toml");
+    auto run = root.table("run");
+    (void)run.number("end_time", 1.0, 0.0, 10.0);
+    (void)run.integer("max_steps", 0, 0, 100);
+    (void)run.boolean("log", true);
+    (void)run.optional_text("label");
+    (void)root.numbers("gravity", 3);
+    return root.values_read();
+  };
+  EXPECT_EQ(
+      read("gravity = [0, 0, -1]\n[run]\nend_time = 0.5\n"),
+      "gravity = [0, 0, -1]\nrun.end_time = 0.5\nrun.label = (absent)\nrun.log = true\nrun.max_steps = 0\n");
+  // Giving a default explicitly reads the same as leaving it out; another value does not.
+  EXPECT_EQ(read("[run]\nend_time = 1\nmax_steps = 0\n"), read("[run]\n"));
+  EXPECT_NE(read("[run]\nend_time = 0.1\n"), read("[run]\nend_time = 0.10000000000000002\n"));
+}

@@ -13,9 +13,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
+#include <string>
 
+#include "craterkit/common/input_error.hpp"
 #include "craterkit/impact/crater_growth.hpp"
 #include "craterkit/impact/impact_run.hpp"
 #include "craterkit/sph/io/checkpoint.hpp"
@@ -233,5 +236,104 @@ TEST(ImpactRun, GradedStandInGoesThroughTheContactWithItsEnergyKept) {
               static_cast<unsigned long long>(summary.run.steps), summary.run.relative_energy_error);
   EXPECT_DOUBLE_EQ(summary.run.time, 3e-4);
   EXPECT_LT(summary.run.relative_energy_error, 1e-2);
+  fs::remove_all(dir);
+}
+
+namespace {
+
+struct Stopped {
+  std::uint64_t step;
+};
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+// A run stopped right after each of its checkpoints in turn (as by a kill: no final outputs) and resumed
+// every time ends with every output file byte for byte equal to the uninterrupted run's: the crater, the
+// growth history (whose samples decide when the run ends), ejecta, conservation log, snapshots and the final
+// checkpoint. The quarter-domain tiny impact with a loose end-of-growth rule, so that the crater-growth
+// monitor ends the run (at about 0.8 s).
+TEST(ImpactRun, StoppedAfterEveryCheckpointAndResumedEqualsTheUninterruptedRun) {
+  auto config = tiny_impact();
+  config.impact.symmetry = DomainSymmetry::quarter;
+  config.impact.escape_speed = 1.0;
+  config.crater.check_interval = 0.05;
+  config.crater.radius_tolerance = 0.05;
+  config.crater.kinetic_energy_fraction = 0.5;
+  config.simulation.output.checkpoint_interval_steps = 15;
+  config.simulation.output.snapshot_times = {0.1, 0.3};
+  const auto base = fs::temp_directory_path() / ("craterkit_stop_resume_" + std::to_string(::getpid()));
+
+  std::vector<std::uint64_t> checkpoints;
+  RunOptions whole = quiet_run_in(base / "whole");
+  whole.after_checkpoint = [&](std::uint64_t step) { checkpoints.push_back(step); };
+  const auto uninterrupted = run_impact(config, whole);
+  std::printf("uninterrupted: %llu steps, %zu checkpoints\n",
+              static_cast<unsigned long long>(uninterrupted.run.steps), checkpoints.size());
+  ASSERT_GE(checkpoints.size(), 8u);
+  ASSERT_TRUE(uninterrupted.crater_growth_ended);
+
+  RunOptions stopped = quiet_run_in(base / "stopped");
+  std::uint64_t last_stop = 0;
+  stopped.after_checkpoint = [&](std::uint64_t step) {
+    if (step > last_stop) throw Stopped{step};
+  };
+  std::size_t stops = 0;
+  for (bool done = false; !done;) {
+    try {
+      const auto summary = run_impact(config, stopped);
+      done = true;
+      EXPECT_EQ(summary.run.steps, uninterrupted.run.steps);
+      EXPECT_EQ(summary.run.time, uninterrupted.run.time);
+    } catch (const Stopped& s) {
+      ASSERT_LT(stops, checkpoints.size()) << "more stops than the uninterrupted run had checkpoints";
+      EXPECT_EQ(s.step, checkpoints[stops]);
+      last_stop = s.step;
+      ++stops;
+      EXPECT_FALSE(fs::exists(base / "stopped" / "crater.json"));
+    }
+    stopped.resume = true;
+  }
+  EXPECT_EQ(stops, checkpoints.size());
+
+  std::size_t compared = 0;
+  for (const auto& entry : fs::directory_iterator(base / "whole")) {
+    const auto name = entry.path().filename();
+    const auto other = base / "stopped" / name;
+    ASSERT_TRUE(fs::exists(other)) << name << " is missing from the resumed run";
+    EXPECT_TRUE(file_bytes(entry.path()) == file_bytes(other)) << name << " differs";
+    ++compared;
+  }
+  EXPECT_GE(compared, 10u);  // checkpoint, 3 snapshots with sidecars, xdmf, 3 logs, crater files
+  fs::remove_all(base);
+}
+
+// A resumed run whose configuration differs in a key that changes the result is refused, naming the key and
+// both values; one that changes only what may change (the end time) goes on.
+TEST(ImpactRun, ResumeRefusesAChangedConfiguration) {
+  const auto dir = fs::temp_directory_path() / ("craterkit_resume_config_" + std::to_string(::getpid()));
+  RunOptions options = quiet_run_in(dir);
+  auto config = tiny_impact();
+  config.impact.symmetry = DomainSymmetry::quarter;
+  config.simulation.run.max_steps = 3;
+  options.configuration = "impact.impact_speed = 50\nrun.max_steps = 3\n";
+  (void)run_impact(config, options);
+  options.resume = true;
+  options.configuration = "impact.impact_speed = 60\nrun.max_steps = 3\n";
+  try {
+    (void)run_impact(config, options);
+    ADD_FAILURE() << "a resume with another impact speed went on";
+  } catch (const craterkit::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("impact.impact_speed: 60 now, 50 in the checkpoint"), std::string::npos) << what;
+    EXPECT_NE(what.find((dir / "checkpoint.h5").string()), std::string::npos) << what;
+  }
+  options.configuration = "impact.impact_speed = 50\nrun.max_steps = 5\n";
+  config.simulation.run.max_steps = 5;
+  EXPECT_EQ(run_impact(config, options).run.steps, 5u);
   fs::remove_all(dir);
 }

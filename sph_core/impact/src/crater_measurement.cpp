@@ -163,6 +163,15 @@ PolarGrid polar_grid(const LocalSteps& steps, double max_radius, double radial_s
       edge += w;
     }
   } else {
+    // A bound on the samples per ray, so that a tiny step is an error rather than gigabytes of samples.
+    constexpr double max_radial_samples = 1e5;
+    if (!(max_radius / radial_step <= max_radial_samples)) {
+      throw InputError(
+          "radial_step " + format_number(radial_step) + " m: " + format_number(max_radius / radial_step) +
+          " samples per ray up to max_radius " + format_number(max_radius) +
+          " m; allowed at most 1e5, i.e. radial_step >= " + format_number(max_radius / max_radial_samples) +
+          " m");
+    }
     const auto count = static_cast<std::size_t>(std::floor(max_radius / radial_step));
     for (std::size_t k = 0; k < count; ++k) {
       g.radius.push_back((double(k) + 0.5) * radial_step);

@@ -36,7 +36,11 @@ class CraterGrowthMonitor final : public RunObserver {
     if (!csv_.empty()) {
       const std::int64_t restart_step =
           checkpoint != nullptr ? static_cast<std::int64_t>(simulation.step_count()) : -1;
-      log_ = std::make_unique<StepCsvLog>(csv_, "time,step,crater_radius,kinetic_energy", 1, restart_step);
+      std::optional<std::uint64_t> expected;
+      if (checkpoint != nullptr && checkpoint->numbers.count("crater_growth_rows") != 0)
+        expected = static_cast<std::uint64_t>(checkpoint->numbers.at("crater_growth_rows"));
+      log_ = std::make_unique<StepCsvLog>(csv_, "time,step,crater_radius,kinetic_energy", 1, restart_step,
+                                          expected);
       for (const auto& row : log_->kept_rows()) {
         samples_.push_back({std::stod(row[0]), std::stoull(row[1]), std::stod(row[2]), std::stod(row[3])});
       }
@@ -47,6 +51,11 @@ class CraterGrowthMonitor final : public RunObserver {
   }
 
   bool after_step(Simulation& simulation) override { return sample_if_due(simulation); }
+
+  // The number of rows of crater_growth.csv, which a resumed run must find again.
+  void save(RunAttributes& checkpoint) const override {
+    if (log_) checkpoint.numbers["crater_growth_rows"] = static_cast<double>(log_->rows());
+  }
 
   [[nodiscard]] const std::vector<CraterGrowthSample>& samples() const { return samples_; }
   [[nodiscard]] const CraterGrowthCriteria& criteria() const { return criteria_; }

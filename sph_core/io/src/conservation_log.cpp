@@ -25,8 +25,9 @@ const char* ConservationLog::header() {
 
 ConservationLog::ConservationLog(const std::filesystem::path& csv) : log_(csv, header(), step_column) {}
 
-ConservationLog::ConservationLog(const std::filesystem::path& csv, std::uint64_t restart_step)
-    : log_(csv, header(), step_column, static_cast<std::int64_t>(restart_step)) {}
+ConservationLog::ConservationLog(const std::filesystem::path& csv, std::uint64_t restart_step,
+                                 std::optional<std::uint64_t> expected_rows)
+    : log_(csv, header(), step_column, static_cast<std::int64_t>(restart_step), expected_rows) {}
 
 void ConservationLog::append(const ConservedQuantities& q) {
   log_.append(format_row(q));

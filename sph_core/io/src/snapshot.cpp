@@ -42,6 +42,10 @@ Particles read_snapshot(const std::filesystem::path& h5, RunAttributes* attribut
   return detail::read_particle_file(h5, attributes);
 }
 
+void reseal_particle_file(const std::filesystem::path& h5) {
+  detail::seal_particle_file(h5);
+}
+
 std::filesystem::path xdmf_sidecar_path(const std::filesystem::path& h5) {
   auto sidecar = h5;
   sidecar.replace_extension(".xdmf");

@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -137,6 +140,105 @@ bool stored_type_matches(hid_t stored) {
 }
 [[noreturn]] void read_failure(const std::filesystem::path& path, const std::string& what) {
   throw InputError("cannot read particle file " + path.string() + ": " + what);
+}
+
+// ---- integrity ------------------------------------------------------------------------------
+// The first integrity_block bytes of a particle file are an HDF5 user block (which HDF5 and every HDF5
+// tool skip) holding "<integrity_magic><16 hex digits of the hash> <byte count>\n" of the rest of the
+// file. A reader checks the length and the hash before HDF5 parses anything, so that a damaged file is an
+// error naming it, never a silently different state, and never handed to the HDF5 library (which can
+// crash on damaged metadata).
+
+constexpr std::size_t integrity_block = 512;
+constexpr std::string_view integrity_magic = "craterkit-integrity-v1 xxh64-like ";
+constexpr std::string_view hdf5_signature = "\x89HDF\r\n\x1a\n";
+
+std::uint64_t rotate_left(std::uint64_t x, int r) {
+  return (x << r) | (x >> (64 - r));
+}
+
+// A 64-bit hash of the bytes of a file from `offset` on, in rounds of the xxHash64 kind (one lane).
+struct FileHash {
+  std::uint64_t hash = 0;
+  std::uint64_t bytes = 0;
+};
+FileHash hash_file(const std::filesystem::path& path, std::size_t offset) {
+  constexpr std::uint64_t p1 = 0x9E3779B185EBCA87ULL, p2 = 0xC2B2AE3D27D4EB4FULL, p3 = 0x165667B19E3779F9ULL;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open " + path.string() + " to check it");
+  in.seekg(static_cast<std::streamoff>(offset));
+  std::vector<char> buffer(std::size_t{1} << 20);
+  std::uint64_t acc = p3, total = 0;
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const auto n = static_cast<std::size_t>(in.gcount());
+    std::size_t i = 0;
+    for (; i + 8 <= n; i += 8) {
+      std::uint64_t w = 0;
+      std::memcpy(&w, buffer.data() + i, 8);
+      acc = rotate_left(acc + w * p2, 31) * p1;
+    }
+    for (; i < n; ++i) acc = rotate_left(acc ^ (static_cast<std::uint8_t>(buffer[i]) * p3), 11) * p1;
+    total += n;
+  }
+  acc ^= total;
+  acc ^= acc >> 33;
+  acc *= p2;
+  acc ^= acc >> 29;
+  acc *= p3;
+  acc ^= acc >> 32;
+  return {acc, total};
+}
+
+std::string hex64(std::uint64_t x) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(x));
+  return text;
+}
+
+}  // namespace
+
+void seal_particle_file(const std::filesystem::path& path) {
+  const FileHash h = hash_file(path, integrity_block);
+  std::string record = std::string(integrity_magic) + hex64(h.hash) + " " + std::to_string(h.bytes) + "\n";
+  record.resize(integrity_block, '\0');
+  std::fstream out(path, std::ios::binary | std::ios::in | std::ios::out);
+  out.write(record.data(), static_cast<std::streamsize>(record.size()));
+  out.flush();
+  if (!out) throw std::runtime_error("cannot write the integrity record of " + path.string());
+}
+
+namespace {
+
+// Checks a particle file before HDF5 opens it. full: also the hash (else only the record and the length).
+void verify_particle_file(const std::filesystem::path& path, bool full) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) read_failure(path, "cannot open it");
+  std::string head(integrity_block + hdf5_signature.size(), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  in.close();
+  if (head.rfind(hdf5_signature, 0) == 0) return;  // written before files carried a record: not checked
+  if (head.rfind(integrity_magic, 0) != 0) {
+    read_failure(path, head.size() > integrity_block &&
+                               head.compare(integrity_block, hdf5_signature.size(), hdf5_signature) == 0
+                           ? "its integrity record is damaged (the file is damaged)"
+                           : "not an HDF5 file (or its header is damaged)");
+  }
+  const std::string record = head.substr(integrity_magic.size(), 64);
+  char hash_text[17] = {};
+  unsigned long long bytes = 0;
+  if (std::sscanf(record.c_str(), "%16[0-9a-f] %llu", hash_text, &bytes) != 2)
+    read_failure(path, "its integrity record is damaged (the file is damaged)");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size != integrity_block + bytes) {
+    read_failure(path, "truncated or damaged: " + std::to_string(size) + " bytes where the file had " +
+                           std::to_string(integrity_block + bytes));
+  }
+  if (!full) return;
+  if (hex64(hash_file(path, integrity_block).hash) != hash_text)
+    read_failure(path, "its checksum does not match: the file is damaged");
 }
 
 // ---- writing --------------------------------------------------------------------------------
@@ -280,10 +382,12 @@ herr_t collect_attribute(hid_t object, const char* name, const H5A_info_t*, void
   return 0;
 }
 
-Handle open_particle_file(const std::filesystem::path& path, AttributeScan& scan) {
+// full_check: verify the whole file's hash (else only its integrity record and length).
+Handle open_particle_file(const std::filesystem::path& path, AttributeScan& scan, bool full_check) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) read_failure(path, "no such file");
   if (!std::filesystem::is_regular_file(path, ec)) read_failure(path, "not a regular file");
+  verify_particle_file(path, full_check);
   if (H5Fis_hdf5(path.c_str()) <= 0) read_failure(path, "not an HDF5 file (or its header is corrupt)");
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
@@ -344,6 +448,31 @@ void read_field(const std::filesystem::path& path, hid_t file, std::string_view 
   }
 }
 
+// HDF5 closes the files it still knows of when the program exits; a file whose close failed (a full disk)
+// crashes the HDF5 1.10 library there. Every file here is closed explicitly, so that clean-up is not needed.
+const bool hdf5_clean_up_at_exit_disabled = [] {
+  H5dont_atexit();
+  return true;
+}();
+
+// A full disk found before HDF5 writes anything: the size of the file to be written (the fields, the
+// visualisation copies, a margin for the metadata) against the free space of its folder.
+void require_free_space(const std::filesystem::path& path, const Particles& particles,
+                        const ParticleFileOptions& options) {
+  std::uintmax_t bytes = 64u << 10;
+  particles.for_each_field(
+      [&](std::string_view, const auto& field) { bytes += field.size() * sizeof(field[0]); });
+  if (options.visualisation_vectors)
+    bytes += particles.size() * (2 * 3 * sizeof(double) + sizeof(std::int64_t));
+  std::error_code ec;
+  const auto parent = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  const auto space = std::filesystem::space(parent, ec);
+  if (!ec && space.available < bytes) {
+    write_failure(path, "the disk is full: " + std::to_string(space.available) + " bytes free in " +
+                            parent.string() + ", about " + std::to_string(bytes) + " needed");
+  }
+}
+
 }  // namespace
 
 void sync_to_disk(const std::filesystem::path& file) {
@@ -366,11 +495,14 @@ void write_particle_file(const std::filesystem::path& path, const Particles& par
   check_attribute_names(attributes);
   const SilenceHdf5Errors silence;
   const std::size_t n = particles.size();
+  require_free_space(path, particles, options);
 
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG);
   Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
   H5Pset_obj_track_times(fcpl.get(), 0);  // root group without modification times (see write_dataset)
+  if (options.integrity_record)
+    H5Pset_userblock(fcpl.get(), integrity_block);  // room for the integrity record (seal_particle_file)
   Handle file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.get(), fapl.get()), H5Fclose);
   if (!file.valid())
     write_failure(path, "cannot create the file (does the directory exist and is it writable?)");
@@ -433,13 +565,14 @@ void write_particle_file(const std::filesystem::path& path, const Particles& par
 
   if (H5Fflush(file.get(), H5F_SCOPE_GLOBAL) < 0 || !file.close())
     write_failure(path, "cannot flush and close it");
+  if (options.integrity_record) seal_particle_file(path);
   sync_to_disk(path);
 }
 
 ParticleFileHeader read_particle_file_header(const std::filesystem::path& path) {
   const SilenceHdf5Errors silence;
   AttributeScan scan;
-  Handle file = open_particle_file(path, scan);
+  Handle file = open_particle_file(path, scan, /*full_check=*/false);
   return {scan.texts["kind"], scan.numbers["time"], scan.integers["step"], scan.integers["particle_count"],
           H5Lexists(file.get(), solid_marker_field, H5P_DEFAULT) > 0};
 }
@@ -447,7 +580,7 @@ ParticleFileHeader read_particle_file_header(const std::filesystem::path& path) 
 Particles read_particle_file(const std::filesystem::path& path, RunAttributes* attributes) {
   const SilenceHdf5Errors silence;
   AttributeScan scan;
-  Handle file = open_particle_file(path, scan);
+  Handle file = open_particle_file(path, scan, /*full_check=*/true);
   const std::uint64_t count = scan.integers["particle_count"];
 
   Particles particles;

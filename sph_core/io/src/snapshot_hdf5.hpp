@@ -22,6 +22,7 @@ struct ParticleFileOptions {
   const char* kind = kind_snapshot;
   bool visualisation_vectors = false;  // also write interleaved position/velocity (n x 3) and stress (n x 6)
   int compression = 0;                 // deflate level of every dataset, 0 (none) .. 9
+  bool integrity_record = true;        // false: a file as earlier versions wrote it (for tests and fuzzing)
 };
 
 // Writes the particle file at `path` (not atomically: callers write to a temporary sibling) and
@@ -41,6 +42,9 @@ struct ParticleFileHeader {
   bool solid_fields = false;  // holds the solid-mechanics group (Particles::solid_fields)
 };
 ParticleFileHeader read_particle_file_header(const std::filesystem::path& path);
+
+// Writes the integrity record (user block: length and hash of the rest) of a closed particle file.
+void seal_particle_file(const std::filesystem::path& path);
 
 // Flushes a written file to stable storage (fsync); throws std::runtime_error on failure.
 void sync_to_disk(const std::filesystem::path& file);

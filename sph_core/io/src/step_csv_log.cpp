@@ -32,9 +32,15 @@ bool parse_step(const std::string& text, std::uint64_t* value) {
 }  // namespace
 
 StepCsvLog::StepCsvLog(std::filesystem::path csv, std::string header, std::size_t step_column,
-                       std::int64_t restart_step)
+                       std::int64_t restart_step, std::optional<std::uint64_t> expected_rows)
     : path_(std::move(csv)) {
   std::error_code ec;
+  const std::string recovery =
+      "the log cannot be rebuilt from the checkpoint: restore the file, or start the run anew";
+  if (restart_step >= 0 && expected_rows && !std::filesystem::exists(path_, ec)) {
+    throw InputError(path_.string() + ": missing; the checkpoint of step " + std::to_string(restart_step) +
+                     " was written when it held " + std::to_string(*expected_rows) + " rows; " + recovery);
+  }
   if (restart_step >= 0 && std::filesystem::exists(path_, ec)) {
     std::ifstream in(path_, std::ios::binary);
     if (!in) throw std::runtime_error("cannot open " + path_.string() + " to resume it");
@@ -60,6 +66,13 @@ StepCsvLog::StepCsvLog(std::filesystem::path csv, std::string header, std::size_
       kept_.push_back(std::move(columns));
     }
     in.close();
+    if (expected_rows && kept_.size() != *expected_rows) {
+      throw InputError(path_.string() + ": holds " + std::to_string(kept_.size()) + " rows up to step " +
+                       std::to_string(restart_step) +
+                       ", but the checkpoint of that step was written when it held " +
+                       std::to_string(*expected_rows) + " (truncated or edited); " + recovery);
+    }
+    rows_ = kept_.size();
     write_text_atomically(path_, kept);
     out_.open(path_, std::ios::binary | std::ios::app);
   } else {
@@ -73,6 +86,7 @@ StepCsvLog::StepCsvLog(std::filesystem::path csv, std::string header, std::size_
 void StepCsvLog::append(const std::string& row) {
   out_ << row << '\n';
   out_.flush();
+  ++rows_;
   if (!out_) throw std::runtime_error("cannot write to " + path_.string());
 }
 

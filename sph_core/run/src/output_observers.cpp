@@ -40,11 +40,23 @@ void LateStageReport::finish(Simulation& simulation) {
                simulation.late_stage_max_mach(), simulation.mach_at_transition());
 }
 
+std::optional<std::uint64_t> expected_rows(const RunAttributes* checkpoint, const std::string& key) {
+  if (checkpoint == nullptr) return std::nullopt;
+  const auto found = checkpoint->numbers.find(key);
+  if (found == checkpoint->numbers.end() || !(found->second >= 0.0)) return std::nullopt;
+  return static_cast<std::uint64_t>(found->second);
+}
+
 bool EjectaLog::start(Simulation& simulation, const RunAttributes* checkpoint) {
   const std::int64_t restart_step =
       checkpoint != nullptr ? static_cast<std::int64_t>(simulation.step_count()) : -1;
-  log_ = std::make_unique<StepCsvLog>(path_, ejecta_csv_header(), ejecta_csv_step_column, restart_step);
+  log_ = std::make_unique<StepCsvLog>(path_, ejecta_csv_header(), ejecta_csv_step_column, restart_step,
+                                      expected_rows(checkpoint, "ejecta_rows"));
   return false;
+}
+
+void EjectaLog::save(RunAttributes& checkpoint) const {
+  if (log_) checkpoint.numbers["ejecta_rows"] = static_cast<double>(log_->rows());
 }
 
 bool EjectaLog::after_step(Simulation& simulation) {
@@ -55,7 +67,8 @@ bool EjectaLog::after_step(Simulation& simulation) {
 
 bool ConservationRecorder::start(Simulation& simulation, const RunAttributes* checkpoint) {
   if (checkpoint != nullptr) {
-    log_ = std::make_unique<ConservationLog>(path_, simulation.step_count());
+    log_ = std::make_unique<ConservationLog>(path_, simulation.step_count(),
+                                             expected_rows(checkpoint, "conservation_rows"));
   } else {
     log_ = std::make_unique<ConservationLog>(path_);
     log_->append(simulation.conserved());
@@ -67,6 +80,10 @@ bool ConservationRecorder::after_step(Simulation& simulation) {
   auto scope = simulation.timers().measure("output");
   log_->append(simulation.conserved());
   return false;
+}
+
+void ConservationRecorder::save(RunAttributes& checkpoint) const {
+  if (log_) checkpoint.numbers["conservation_rows"] = static_cast<double>(log_->rows());
 }
 
 bool SnapshotWriter::start(Simulation& simulation, const RunAttributes* checkpoint) {

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,12 +28,17 @@ class LateStageReport final : public RunObserver {
   double time_step_before_ = 0.0;
 };
 
-// ejecta.csv: one row per ejected particle (solver/ejecta.hpp), resumable with the run.
+// The number of rows a resumed log must keep: the attribute `key` of the checkpoint, when present.
+std::optional<std::uint64_t> expected_rows(const RunAttributes* checkpoint, const std::string& key);
+
+// ejecta.csv: one row per ejected particle (solver/ejecta.hpp), resumable with the run; its row count
+// travels in checkpoints as "ejecta_rows".
 class EjectaLog final : public RunObserver {
  public:
   explicit EjectaLog(std::filesystem::path csv) : path_(std::move(csv)) {}
   bool start(Simulation& simulation, const RunAttributes* checkpoint) override;
   bool after_step(Simulation& simulation) override;
+  void save(RunAttributes& checkpoint) const override;
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
 
  private:
@@ -40,12 +46,14 @@ class EjectaLog final : public RunObserver {
   std::unique_ptr<StepCsvLog> log_;
 };
 
-// conservation.csv: the conserved quantities after every step (and at t = 0).
+// conservation.csv: the conserved quantities after every step (and at t = 0); its row count travels in
+// checkpoints as "conservation_rows".
 class ConservationRecorder final : public RunObserver {
  public:
   explicit ConservationRecorder(std::filesystem::path csv) : path_(std::move(csv)) {}
   bool start(Simulation& simulation, const RunAttributes* checkpoint) override;
   bool after_step(Simulation& simulation) override;
+  void save(RunAttributes& checkpoint) const override;
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
 
  private:

@@ -2,9 +2,16 @@
 
 #include <omp.h>
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
+#include <map>
 #include <memory>
+#include <sstream>
 
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/common/version.hpp"
@@ -29,16 +36,18 @@ class Checkpoints {
 
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
 
-  void write_if_due(Simulation& simulation) {
+  // True when a checkpoint was written.
+  bool write_if_due(Simulation& simulation) {
     const auto now = Clock::now();
     const bool by_steps = output_.checkpoint_interval_steps > 0 &&
                           simulation.step_count() % output_.checkpoint_interval_steps == 0;
     const bool by_wall =
         output_.checkpoint_interval_seconds > 0 &&
         std::chrono::duration<double>(now - last_).count() >= output_.checkpoint_interval_seconds;
-    if (!by_steps && !by_wall) return;
+    if (!by_steps && !by_wall) return false;
     write(simulation);
     last_ = now;
+    return true;
   }
 
   void write(Simulation& simulation) {
@@ -58,10 +67,64 @@ class Checkpoints {
   Clock::time_point last_ = Clock::now();
 };
 
+std::map<std::string, std::string> configuration_values(const std::string& listing) {
+  std::map<std::string, std::string> values;
+  std::istringstream in(listing);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto eq = line.find(" = ");
+    if (eq != std::string::npos) values[line.substr(0, eq)] = line.substr(eq + 3);
+  }
+  return values;
+}
+
+// Refuses a resume whose configuration differs from the checkpoint's in a key that changes the result.
+void check_resumed_configuration(const std::filesystem::path& path, const RunAttributes& checkpoint,
+                                 const std::string& configuration) {
+  if (configuration.empty()) return;
+  const auto stored = checkpoint.texts.find("configuration");
+  if (stored == checkpoint.texts.end()) return;  // a checkpoint written before configurations were stored
+  const auto then = configuration_values(stored->second);
+  const auto now = configuration_values(configuration);
+  auto refuse = [&](const std::string& key, const std::string& here, const std::string& there) {
+    throw InputError("--resume: the configuration differs from the one of checkpoint " + path.string() +
+                     " in " + key + ": " + here + " now, " + there +
+                     " in the checkpoint; a resumed run may change only run.end_time, run.max_steps, "
+                     "problem.name and [output]. Resume with the checkpoint's configuration, or start the "
+                     "changed run in another --out folder");
+  };
+  for (const auto& [key, value] : now) {
+    if (resumable_configuration_key(key)) continue;
+    const auto old = then.find(key);
+    if (old == then.end()) refuse(key, value, "(not read)");
+    if (old->second != value) refuse(key, value, old->second);
+  }
+  for (const auto& [key, value] : then) {
+    if (!resumable_configuration_key(key) && now.count(key) == 0) refuse(key, "(not read)", value);
+  }
+}
+
+// Removes the temporary files that killed runs left in the output folder (".<name>.tmp.<pid>" of a
+// process that no longer runs).
+void remove_stale_temporaries(const std::filesystem::path& directory) {
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(directory, ec)) {
+    const std::string name = entry.path().filename().string();
+    const auto mark = name.rfind(".tmp.");
+    if (name.empty() || name[0] != '.' || mark == std::string::npos) continue;
+    const std::string pid_text = name.substr(mark + 5);
+    if (pid_text.empty() || pid_text.find_first_not_of("0123456789") != std::string::npos) continue;
+    const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
+    const bool alive =
+        pid > 0 && pid != ::getpid() && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+    if (!alive) std::filesystem::remove(entry.path(), ec);
+  }
+}
+
 // A Simulation continued from the checkpoint (whose attributes go to *checkpoint).
 std::unique_ptr<Simulation> resume_simulation(const SimulationConfig& config, ProblemSetup problem,
                                               const RunAttributes& record, const std::filesystem::path& path,
-                                              RunAttributes* checkpoint) {
+                                              const std::string& configuration, RunAttributes* checkpoint) {
   Particles particles = read_checkpoint(path, checkpoint);
   const auto setup = checkpoint->texts.find("setup");
   const std::string expected = record.texts.count("setup") != 0 ? record.texts.at("setup") : "?";
@@ -70,8 +133,13 @@ std::unique_ptr<Simulation> resume_simulation(const SimulationConfig& config, Pr
                      (setup == checkpoint->texts.end() ? std::string("?") : setup->second) +
                      "\", configuration: \"" + expected + "\")");
   }
-  return std::make_unique<Simulation>(config.solver, std::move(problem), std::move(particles),
-                                      read_solver_state(*checkpoint, "checkpoint"));
+  check_resumed_configuration(path, *checkpoint, configuration);
+  try {
+    return std::make_unique<Simulation>(config.solver, std::move(problem), std::move(particles),
+                                        read_solver_state(*checkpoint, "checkpoint"));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(path.string() + ": the checkpoint's particles cannot be continued: " + e.what());
+  }
 }
 
 void summarise(const Simulation& sim, RunSummary& summary) {
@@ -105,6 +173,11 @@ void summarise(const Simulation& sim, RunSummary& summary) {
 
 }  // namespace
 
+bool resumable_configuration_key(const std::string& key) {
+  return key == "run.end_time" || key == "run.max_steps" || key == "problem.name" ||
+         key.rfind("output.", 0) == 0;
+}
+
 RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
                           const RunAttributes& record_in, const RunOptions& options,
                           std::span<RunObserver* const> scenario_observers) {
@@ -112,7 +185,10 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   const auto wall_start = Clock::now();
   const bool files = !options.output_directory.empty();
   const fs::path out = options.output_directory;
-  if (files) fs::create_directories(out);
+  if (files) {
+    fs::create_directories(out);
+    remove_stale_temporaries(out);
+  }
 
   RunAttributes record = record_in;
   record.texts["problem_name"] = config.name;
@@ -127,7 +203,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   summary.resumed = files && options.resume && fs::exists(out / "checkpoint.h5");
   RunAttributes checkpoint_attributes;
   auto sim = summary.resumed ? resume_simulation(config, std::move(problem), record, out / "checkpoint.h5",
-                                                 &checkpoint_attributes)
+                                                 options.configuration, &checkpoint_attributes)
                              : std::make_unique<Simulation>(config.solver, std::move(problem));
 
   // The observers, in the order they act after a step.
@@ -162,7 +238,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
     sim->step(target);
     if (!logs_ejecta) (void)sim->take_new_ejecta();  // nobody logs them
     for (RunObserver* o : observers) ended = o->after_step(*sim) || ended;
-    if (files) checkpoints.write_if_due(*sim);
+    if (files && checkpoints.write_if_due(*sim) && options.after_checkpoint)
+      options.after_checkpoint(sim->step_count());
     progress.update(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
   }
   progress.finish(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());

@@ -74,6 +74,11 @@ class TomlTable {
   // An array of tables ([[k]]); absent gives an empty vector.
   std::vector<TomlTable> tables(std::string_view k);
 
+  // Every value the getters of this document (all its tables) returned, defaults included, as sorted lines
+  // "<dotted key> = <value>" (numbers with 17 digits, texts quoted, "(absent)" for an optional key not
+  // given): two documents read alike give the same text exactly when their readers saw the same values.
+  [[nodiscard]] std::string values_read() const;
+
   // Rejects every key that no getter (or accept()) asked for.
   void finish() const;
   // Rejects now every key not in `allowed`, in finish()'s words. A reader that calls this before its
@@ -87,6 +92,7 @@ class TomlTable {
             std::string source);
   [[nodiscard]] const void* find(std::string_view k) const;
   const void* use(std::string_view k);
+  void record(std::string_view k, std::string value) const;
 
   std::shared_ptr<const Document> document_;  // keeps the parsed document alive for sub-tables
   const void* table_ = nullptr;               // the toml++ table, or null for an absent table

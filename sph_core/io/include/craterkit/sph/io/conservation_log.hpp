@@ -21,11 +21,14 @@ class ConservationLog {
   explicit ConservationLog(const std::filesystem::path& csv);
   // Resumes the log of a run restarted after `restart_step` completed steps (StepCsvLog); a missing file
   // starts a new log.
-  ConservationLog(const std::filesystem::path& csv, std::uint64_t restart_step);
+  // With expected_rows, a missing log or one with another number of kept rows is an error.
+  ConservationLog(const std::filesystem::path& csv, std::uint64_t restart_step,
+                  std::optional<std::uint64_t> expected_rows = std::nullopt);
 
   void append(const ConservedQuantities& q);
 
   [[nodiscard]] const std::filesystem::path& path() const { return log_.path(); }
+  [[nodiscard]] std::uint64_t rows() const { return log_.rows(); }
   static const char* header();  // the header line, without newline
 
  private:

@@ -46,9 +46,15 @@ void write_snapshot(const std::filesystem::path& h5, const Particles& particles,
                     const RunAttributes& attributes, int compression = 0);
 
 // Reads every field of a snapshot (or checkpoint). Throws craterkit::InputError naming the path and
-// what is wrong if the file is missing, not HDF5, not a craterkit particle file, or a field is missing
-// or has the wrong type or length. Fills *attributes when given.
+// what is wrong if the file is missing, damaged (its length or checksum differ from the integrity record
+// written with it), not HDF5, not a craterkit particle file, or a field is missing or has the wrong type
+// or length. Fills *attributes when given.
 Particles read_snapshot(const std::filesystem::path& h5, RunAttributes* attributes = nullptr);
+
+// Particle files carry an integrity record (length and checksum) in their HDF5 user block, which every
+// reader checks before HDF5 parses the file (docs/output.md). A file changed on purpose by another program
+// (h5py, h5repack) no longer matches it; this writes the record anew for the file as it is now.
+void reseal_particle_file(const std::filesystem::path& h5);
 
 // "run/snap_000012.h5" -> "run/snap_000012.xdmf".
 std::filesystem::path xdmf_sidecar_path(const std::filesystem::path& h5);

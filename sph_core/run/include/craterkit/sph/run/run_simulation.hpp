@@ -12,6 +12,7 @@
 // config.run.max_steps, or when an observer says so.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <utility>
@@ -29,10 +30,17 @@ struct RunOptions {
   bool resume = false;                     // continue from output_directory/checkpoint.h5 if present
   bool progress = true;                    // the progress line on stderr
   bool log = true;                         // late-stage messages on stderr
-  // The text of the configuration the run was set up from, stored in every snapshot and checkpoint as the
-  // root attribute `configuration` (empty: not stored).
+  // The configuration's values as "key = value" lines (TomlTable::values_read()), written into every
+  // checkpoint and snapshot as the text attribute "configuration". A resume compares it with the
+  // checkpoint's and refuses (InputError naming the key and both values) a difference in any key but
+  // resumable_configuration_key()s; empty: no comparison.
   std::string configuration;
+  // Called after each checkpoint written during the steps (not the final one) is on disk, with its step.
+  std::function<void(std::uint64_t step)> after_checkpoint;
 };
+
+// Keys a resumed run may change: run.end_time, run.max_steps, problem.name and [output].
+bool resumable_configuration_key(const std::string& key);
 
 struct RunSummary {
   std::string name;
