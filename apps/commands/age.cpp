@@ -412,11 +412,11 @@ void add_age_command(CLI::App& parent) {
   craterkit::cli::add_production_flags(*sub, o->production);
   craterkit::cli::add_law_uncertainty_flags(*sub, o->uncertainty);
   sub->add_option_function<std::vector<std::string>>(
-         "--cohesion",
-         [o](const std::vector<std::string>& items) {
-           o->cohesion = craterkit::cli::number_list("--cohesion", items);
-         },
-         "Cohesions Y of the scaling law, Pa (comma-separated); one age each");
+      "--cohesion",
+      [o](const std::vector<std::string>& items) {
+        o->cohesion = craterkit::cli::number_list("--cohesion", items);
+      },
+      "Cohesions Y of the scaling law, Pa (comma-separated); one age each");
   sub->add_option(
          "--prior", o->prior,
          "With --chronology: the prior is uniform in age, or in crater density (density: proportional to "
