@@ -84,6 +84,15 @@ void Progress::update(double time, std::uint64_t step, double dt, std::uint64_t 
     last_print_updates_ = particle_updates;
     return;
   }
+  if (options_.stage_end_time > 0 && last_print_time_ < options_.stage_end_time &&
+      time >= options_.stage_end_time) {
+    // The first stage just ended: the next stage's pace is measured from here, not over an interval that
+    // holds the slow end of the first one (which made a run 9 minutes from its end say "37 h left").
+    last_print_wall_ = now;
+    last_print_time_ = time;
+    last_print_updates_ = particle_updates;
+    return;
+  }
   const double interval = terminal_ ? options_.redraw_seconds : options_.log_interval_seconds;
   if (now - last_print_wall_ < interval) return;
   print(

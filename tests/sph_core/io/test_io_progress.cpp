@@ -101,7 +101,8 @@ TEST(IoProgress, PrintsEveryIntervalWithRatesOverTheInterval) {
 }
 
 // Before the end of a first stage (the late-stage switch) the time left is to that stage's end, and the
-// line says so: the pace of the shock stage says nothing about the late stage.
+// line says so: the pace of the shock stage says nothing about the late stage, whose own pace is measured
+// from the switch on.
 TEST(IoProgress, EstimatesToTheEndOfTheFirstStageBeforeIt) {
   std::FILE* log = std::tmpfile();
   ASSERT_NE(log, nullptr);
@@ -121,13 +122,19 @@ TEST(IoProgress, EstimatesToTheEndOfTheFirstStageBeforeIt) {
       " to t = 1.0000e-01 s\n");
   std::fseek(log, 0, SEEK_END);
   const long before = std::ftell(log);
-  wall = 100;
-  progress.update(100.0, 1000, 0.1, 1000000);
-  // After the switch: 99.98 s in 80 s, 400 s to the end -> 320 s, without the stage note.
+  // The switch lands at t = 0.1 s after 200 s of wall time (a slow end of the first stage): no line, the
+  // late stage's pace is measured from here.
+  wall = 200;
+  progress.update(0.1, 300, 0.1, 300000);
+  EXPECT_EQ(contents(log).substr(static_cast<std::size_t>(before)), "");
+  wall = 220;
+  progress.update(100.1, 1300, 0.1, 1300000);
+  // 100 s simulated in 20 s, 399.9 s to the end -> 79.98 s; 1e6 updates in 20 s. Measured over the interval
+  // from t = 0.02 s (wall 20 s) it would say 400 s.
   const std::string last = contents(log).substr(static_cast<std::size_t>(before));
   EXPECT_EQ(
       last,
-      "t 1.0000e+02 / 5.0000e+02 s  step 1000  dt 1.000e-01 s  1.000e+04 particle-updates/s  left 0:05:20\n");
+      "t 1.0010e+02 / 5.0000e+02 s  step 1300  dt 1.000e-01 s  5.000e+04 particle-updates/s  left 0:01:20\n");
   std::fclose(log);
 }
 

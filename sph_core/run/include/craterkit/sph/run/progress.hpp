@@ -16,7 +16,7 @@ struct ProgressOptions {
   double end_time = 0;  // s, simulated end time (for the time left; 0: unknown)
   // s, end of a first stage whose pace says nothing about the rest (the late-stage switch of an impact: its
   // time step is hundreds of times longer after it). Before it the time left is estimated to it and the
-  // line says so; 0: no such stage.
+  // line says so; after it the pace is measured from the end of the stage on; 0: no such stage.
   double stage_end_time = 0;
   double redraw_seconds = 0.25;      // terminal: minimum wall time between redraws
   double log_interval_seconds = 10;  // not a terminal: wall time between lines
