@@ -120,9 +120,7 @@ scaling::FitResult fit_engine_radii(const scaling::RadiiTable& table, nlohmann::
     min_strength = std::min(min_strength, row.target.strength);
     max_strength = std::max(max_strength, row.target.strength);
   }
-  double rms = 0.0;
-  for (const auto& r : fit.residuals) rms += r.log_residual * r.log_residual;
-  rms = std::sqrt(rms / static_cast<double>(fit.residuals.size()));
+  const double rms = fit.residual_summary.rms_log_residual;
 
   report += fmt::format(
       "\n## Scaling constants from the engine\n\nCeres fit of the point-source law (Housen & Holsapple 2011 "
