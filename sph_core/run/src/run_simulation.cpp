@@ -28,43 +28,68 @@ using Clock = std::chrono::steady_clock;
 
 // The checkpoint of the run: when it is due, and what it holds (the solver's state, the run record and what
 // every observer needs to resume).
+//
+// When: a checkpoint must not change the run. The neighbour lists depend on the search built at the last
+// restructure, and a resumed run builds its search afresh; a checkpoint after a step whose successor does not
+// rebuild would therefore need a rebuild that the run without it does not make (different sum orders, other
+// last bits). So with curve sorting on (sort_interval > 0) checkpoints are written only after the steps after
+// which the engine sorts and rebuilds anyway (Simulation::next_step_sorts()): by step count every
+// checkpoint_interval_steps rounded up to a multiple of sort_interval, and by wall clock at the first such
+// step after the interval has passed. Whether or when checkpoints are written then changes no result. Without
+// sorting a checkpoint forces the rebuild (results then depend on the step-counted checkpoints' steps; wall-
+// clock checkpoints are refused then, check_checkpoint_timing() in io/config.hpp).
 class Checkpoints {
  public:
-  Checkpoints(std::filesystem::path path, const OutputParameters& output, const RunAttributes& record,
-              std::span<RunObserver* const> observers)
-      : path_(std::move(path)), output_(output), record_(record), observers_(observers) {}
+  Checkpoints(std::filesystem::path path, const OutputParameters& output, std::uint64_t sort_interval,
+              const RunAttributes& record, std::span<RunObserver* const> observers)
+      : path_(std::move(path)),
+        output_(output),
+        step_interval_(rounded_up(output.checkpoint_interval_steps, sort_interval)),
+        record_(record),
+        observers_(observers) {}
 
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
 
   // True when a checkpoint was written.
   bool write_if_due(Simulation& simulation) {
-    const auto now = Clock::now();
-    const bool by_steps = output_.checkpoint_interval_steps > 0 &&
-                          simulation.step_count() % output_.checkpoint_interval_steps == 0;
-    const bool by_wall =
-        output_.checkpoint_interval_seconds > 0 &&
-        std::chrono::duration<double>(now - last_).count() >= output_.checkpoint_interval_seconds;
+    if (output_.checkpoint_interval_seconds > 0 &&
+        std::chrono::duration<double>(Clock::now() - last_).count() >= output_.checkpoint_interval_seconds) {
+      wall_clock_due_ = true;
+    }
+    const bool by_steps = step_interval_ > 0 && simulation.step_count() % step_interval_ == 0;
+    const bool by_wall = wall_clock_due_ && simulation.next_step_sorts();
     if (!by_steps && !by_wall) return false;
     write(simulation);
-    last_ = now;
     return true;
   }
 
+  // Also the final checkpoint, at whatever step the run ends: a resume from it continues only when the run
+  // is extended (end_time, max_steps), and is then exact when that step is one after which the next sorts.
   void write(Simulation& simulation) {
     auto scope = simulation.timers().measure("output");
     RunAttributes a = run_attributes(simulation, record_);
     for (const RunObserver* o : observers_) o->save(a);
     write_checkpoint(path_, simulation.particles(), a);
-    // A resumed run builds its neighbour lists afresh: so does this one, to follow the same sequence.
-    simulation.force_neighbour_rebuild();
+    // A resumed run builds its neighbour lists afresh: so does this one, to follow the same sequence (the
+    // next step's sort does that anyway when it comes).
+    if (!simulation.next_step_sorts()) simulation.force_neighbour_rebuild();
+    last_ = Clock::now();
+    wall_clock_due_ = false;
   }
 
  private:
+  // n rounded up to a multiple of m (n when m is 0).
+  static std::uint64_t rounded_up(std::uint64_t n, std::uint64_t m) {
+    return m == 0 ? n : (n + m - 1) / m * m;
+  }
+
   std::filesystem::path path_;
   const OutputParameters& output_;
+  std::uint64_t step_interval_;
   const RunAttributes& record_;
   std::span<RunObserver* const> observers_;
   Clock::time_point last_ = Clock::now();
+  bool wall_clock_due_ = false;
 };
 
 std::map<std::string, std::string> configuration_values(const std::string& listing) {
@@ -185,6 +210,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   const auto wall_start = Clock::now();
   const bool files = !options.output_directory.empty();
   const fs::path out = options.output_directory;
+  if (files) check_checkpoint_timing(config, "");
   if (files) {
     fs::create_directories(out);
     remove_stale_temporaries(out);
@@ -217,7 +243,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   if (files && config.output.conservation_log) observers.push_back(&conservation);
   if (files) observers.push_back(&snapshots);
   observers.insert(observers.end(), scenario_observers.begin(), scenario_observers.end());
-  Checkpoints checkpoints(out / "checkpoint.h5", config.output, record, observers);
+  Checkpoints checkpoints(out / "checkpoint.h5", config.output, config.solver.neighbours.sort_interval,
+                          record, observers);
 
   ProgressOptions progress_options;
   progress_options.enabled = options.progress;
