@@ -367,6 +367,40 @@ TEST(ImpactRun, CheckpointsDoNotChangeTheResult) {
   fs::remove_all(base);
 }
 
+// A resume whose material file changed since the checkpoint (the configuration names the file, not its
+// values) is refused, naming the file; with the file restored it goes on.
+TEST(ImpactRun, ResumeRefusesAChangedMaterialFile) {
+  const auto dir = fs::temp_directory_path() / ("craterkit_resume_material_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  RunOptions options = quiet_run_in(dir / "run");
+  const char* data = std::getenv("CRATERKIT_DATA_DIR");
+  ASSERT_NE(data, nullptr);
+  const fs::path material = dir / "target.toml";
+  fs::copy_file(fs::path(data) / "materials" / "basalt_matrix_ryugu.toml", material);
+  const std::string original = file_bytes(material);
+  auto config = tiny_impact();
+  config.impact.symmetry = DomainSymmetry::quarter;
+  config.impact.target_material = material.string();
+  config.simulation.run.max_steps = 3;
+  (void)run_impact(config, options);
+  options.resume = true;
+  config.simulation.run.max_steps = 5;
+  std::ofstream(material, std::ios::app) << "# edited\n";
+  try {
+    (void)run_impact(config, options);
+    ADD_FAILURE() << "a resume with a changed material file went on";
+  } catch (const craterkit::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("material file " + material.string() + " has changed since checkpoint"),
+              std::string::npos)
+        << what;
+  }
+  std::ofstream(material, std::ios::binary | std::ios::trunc) << original;
+  EXPECT_EQ(run_impact(config, options).run.steps, 5u);
+  fs::remove_all(dir);
+}
+
 // A resumed run whose configuration differs in a key that changes the result is refused, naming the key and
 // both values; one that changes only what may change (the end time) goes on.
 TEST(ImpactRun, ResumeRefusesAChangedConfiguration) {

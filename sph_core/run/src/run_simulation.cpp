@@ -129,6 +129,45 @@ void check_resumed_configuration(const std::filesystem::path& path, const RunAtt
   }
 }
 
+// The material files of a problem, one line "<index> <hash> <file>" per material read from a file: the run
+// record's text "material_files", against which a resume checks that no material file changed.
+std::string material_files(const ProblemSetup& problem) {
+  std::string lines;
+  for (std::size_t i = 0; i < problem.materials.size(); ++i) {
+    const Material& m = problem.materials[i];
+    if (m.source_file.empty()) continue;
+    lines += std::to_string(i) + " " + m.source_hash + " " + m.source_file + "\n";
+  }
+  return lines;
+}
+
+// Refuses a resume when a material file of the checkpoint's run has other contents now: the configuration
+// names the material, not its values, and a changed file would continue the run with other physics.
+void check_resumed_material_files(const std::filesystem::path& path, const RunAttributes& checkpoint,
+                                  const std::string& now) {
+  const auto stored = checkpoint.texts.find("material_files");
+  if (stored == checkpoint.texts.end()) return;  // a checkpoint written before material files were recorded
+  const auto by_index = [](const std::string& text) {
+    std::map<std::string, std::pair<std::string, std::string>> out;  // index -> (hash, file)
+    std::istringstream in(text);
+    std::string index, hash, file;
+    while (in >> index >> hash && std::getline(in >> std::ws, file)) out[index] = {hash, file};
+    return out;
+  };
+  const auto then = by_index(stored->second);
+  for (const auto& [index, current] : by_index(now)) {
+    const auto old = then.find(index);
+    if (old == then.end() || old->second.first == current.first) continue;
+    const bool moved = old->second.second != current.second;
+    throw InputError(
+        "--resume: material file " + current.second + " has changed since checkpoint " + path.string() +
+        " was written" + (moved ? " (from " + old->second.second + " then)" : std::string()) + ": hash " +
+        current.first + " now, " + old->second.first +
+        " in the checkpoint. A resumed run must use the material values it started with: restore "
+        "the file, or start the changed run in another --out folder");
+  }
+}
+
 // Removes the temporary files that killed runs left in the output folder (".<name>.tmp.<pid>" of a
 // process that no longer runs).
 void remove_stale_temporaries(const std::filesystem::path& directory) {
@@ -159,6 +198,7 @@ std::unique_ptr<Simulation> resume_simulation(const SimulationConfig& config, Pr
                      "\", configuration: \"" + expected + "\")");
   }
   check_resumed_configuration(path, *checkpoint, configuration);
+  check_resumed_material_files(path, *checkpoint, material_files(problem));
   try {
     return std::make_unique<Simulation>(config.solver, std::move(problem), std::move(particles),
                                         read_solver_state(*checkpoint, "checkpoint"));
@@ -220,6 +260,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   record.texts["problem_name"] = config.name;
   record.texts["craterkit_version"] = craterkit::version();
   if (!options.configuration.empty()) record.texts["configuration"] = options.configuration;
+  if (const std::string files = material_files(problem); !files.empty())
+    record.texts["material_files"] = files;
   RunSummary summary;
   summary.name = config.name;
   summary.setup = record.texts.count("setup") != 0 ? record.texts.at("setup") : "";
