@@ -99,8 +99,9 @@ void run_fit(const FitCommandOptions& options) {
   // The rows' residuals are kept only to be written (40 bytes a row).
   fit_options.keep_residuals = options.residuals.has_value();
   ProgressLine progress(!options.quiet);
-  fit_options.progress = [&](const std::string& stage, int done, int total) {
-    progress.update(fmt::format("fit: {} {} of {}  ({:.0f} s)", stage, done + 1, total, progress.seconds()));
+  fit_options.progress = [&](const scaling::FitProgress& p) {
+    progress.update(fmt::format("fit: {} {} of {}, iteration {}  ({:.0f} s)", p.stage, p.index + 1, p.count,
+                                p.iteration, progress.seconds()));
   };
   fit_options.shared_strength = options.shared_strength;
   scaling::GroupedFitOptions grouped_options;

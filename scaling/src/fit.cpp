@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <ceres/ceres.h>
@@ -397,6 +398,36 @@ struct Minimum {
   int starts_at_minimum = 0;  // within 1e-6 of the cost, relative
 };
 
+// Reports a solve's iterations to FitOptions::progress (reading only: the solve is unchanged).
+class ProgressCallback final : public ceres::IterationCallback {
+ public:
+  ProgressCallback(const FitOptions& options, FitProgress where)
+      : options_(options), where_(std::move(where)) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    where_.iteration = summary.iteration;
+    options_.progress(where_);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const FitOptions& options_;
+  FitProgress where_;
+};
+
+// ceres::Solve, reporting its stage and iterations when the options ask for progress.
+void solve(const ceres::Solver::Options& solver, ceres::Problem& problem, ceres::Solver::Summary& summary,
+           const FitOptions& options, const FitProgress& where) {
+  if (!options.progress) {
+    ceres::Solve(solver, &problem, &summary);
+    return;
+  }
+  options.progress(where);
+  ProgressCallback callback(options, where);
+  ceres::Solver::Options reporting = solver;
+  reporting.callbacks.push_back(&callback);
+  ceres::Solve(reporting, &problem, &summary);
+}
+
 // Solves from every starting point and keeps the lowest cost: the law is non-linear in mu and nu, so a
 // single local solve could report a local minimum. Starts whose solve fails are skipped; the number of
 // starts that reached the minimum says how clearly it stands out.
@@ -405,11 +436,10 @@ Minimum multi_start(const FitSetup& setup, const FitOptions& options, const cere
   std::vector<double> costs;
   int done = 0;
   for (auto start : starting_points(options, setup.base, setup.fixed, setup.ln_y_typical)) {
-    if (options.progress) options.progress("start", done++, options.starts);
     ceres::Problem problem;
     build_problem(problem, setup.rows, options, start, setup.held);
     ceres::Solver::Summary summary;
-    ceres::Solve(solver, &problem, &summary);
+    solve(solver, problem, summary, options, {"start", done++, options.starts, 0});
     if (!summary.IsSolutionUsable() || !std::isfinite(summary.final_cost)) continue;
     costs.push_back(summary.final_cost);
     if (summary.final_cost < best.cost) {
@@ -506,7 +536,7 @@ void flag_null_space(const FitSetup& setup, const FitOptions& options, const Val
 // bound is not tested.
 bool profile_rises(int index, const FitSetup& setup, const FitOptions& options,
                    const ceres::Solver::Options& solver, const Values& values, double best_cost,
-                   double sigma_scale, const std::vector<bool>& undetermined) {
+                   double sigma_scale, const std::vector<bool>& undetermined, const FitProgress& where) {
   const double window = 4.0 * determination_scale(index);
   for (const double sign : {-1.0, 1.0}) {
     Values trial = values;
@@ -518,7 +548,7 @@ bool profile_rises(int index, const FitSetup& setup, const FitOptions& options,
     ceres::Problem profile;
     build_problem(profile, setup.rows, options, trial, trial_held);
     ceres::Solver::Summary summary;
-    ceres::Solve(solver, &profile, &summary);
+    solve(solver, profile, summary, options, where);
     const double delta_chi2 = 2.0 * (summary.final_cost - best_cost) / sigma_scale;
     if (!(delta_chi2 >= 4.0)) return false;
   }
@@ -533,8 +563,8 @@ void flag_flat_profiles(const FitSetup& setup, const FitOptions& options,
   const auto free = free_parameters(setup.held, undetermined);
   int done = 0;
   for (int index : free) {
-    if (options.progress) options.progress("profile", done++, static_cast<int>(free.size()));
-    if (!profile_rises(index, setup, options, solver, values, best_cost, sigma_scale, undetermined)) {
+    const FitProgress where{"profile", done++, static_cast<int>(free.size()), 0};
+    if (!profile_rises(index, setup, options, solver, values, best_cost, sigma_scale, undetermined, where)) {
       undetermined[index] = true;
     }
   }
@@ -673,7 +703,7 @@ FitResult fit_rows(const RowSelection& rows, const FitOptions& options) {
   std::vector<bool> undetermined(kParameterCount, false);
   flag_null_space(setup, options, values, undetermined);
   flag_flat_profiles(setup, options, solver, values, minimum.cost, result.sigma_scale, undetermined);
-  if (options.progress) options.progress("covariance", 0, 1);
+  if (options.progress) options.progress({"covariance", 0, 1, 0});
   const Eigen::MatrixXd internal_covariance =
       conditional_covariance(setup, options, values, undetermined, result.sigma_scale);
 

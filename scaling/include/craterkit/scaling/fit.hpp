@@ -38,6 +38,15 @@
 
 namespace craterkit::scaling {
 
+// Where a fit is: stage "start", "profile" or "covariance", the number of that stage being worked on
+// (0-based) of how many, and the solver's iteration in it (0 before the first).
+struct FitProgress {
+  std::string stage;
+  int index = 0;
+  int count = 0;
+  int iteration = 0;
+};
+
 struct FitOptions {
   Form form = Form::holsapple;
   // Parameters held fixed, by name (K1, K2 or H1, H2, mu, nu, Y); other names are InputErrors.
@@ -49,9 +58,9 @@ struct FitOptions {
   // Keep every row's residual in FitResult::residuals (one FitResidual, 40 bytes, per row); without it only
   // FitResult::residual_summary is filled, which is what `craterkit fit` needs unless --residuals is given.
   bool keep_residuals = true;
-  // Called after each solve (every start, every profile) and at the covariance, for a progress line on
-  // large tables: what is being done ("start", "profile", "covariance"), how many of how many are done.
-  std::function<void(const std::string& stage, int done, int total)> progress;
+  // Called at each solve (every start, every profile), after each of its iterations, and at the covariance,
+  // for a progress line on large tables (a solve over millions of rows takes minutes).
+  std::function<void(const FitProgress&)> progress;
 };
 
 struct FittedParameter {
