@@ -260,8 +260,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   record.texts["problem_name"] = config.name;
   record.texts["craterkit_version"] = craterkit::version();
   if (!options.configuration.empty()) record.texts["configuration"] = options.configuration;
-  if (const std::string files = material_files(problem); !files.empty())
-    record.texts["material_files"] = files;
+  if (const std::string listed = material_files(problem); !listed.empty())
+    record.texts["material_files"] = listed;
   RunSummary summary;
   summary.name = config.name;
   summary.setup = record.texts.count("setup") != 0 ? record.texts.at("setup") : "";
