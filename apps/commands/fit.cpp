@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -22,6 +24,7 @@
 #include "fit_report.hpp"
 #include "json_output.hpp"
 #include "output_checks.hpp"
+#include "progress_line.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -35,7 +38,9 @@ struct FitCommandOptions {
   std::optional<std::string> group_by;
   bool require_growth_ended = false;
   std::optional<std::string> out;
+  std::optional<std::string> residuals;
   bool json = false;
+  bool quiet = false;
 };
 
 std::pair<std::string, double> parse_fix(const std::string& text) {
@@ -85,13 +90,42 @@ void run_fit(const FitCommandOptions& options) {
   }
   fit_options.starts = options.starts;
   if (options.out) check_output_file("--out", *options.out);
+  if (options.residuals) {
+    check_output_file("--residuals", *options.residuals);
+    if (options.out &&
+        std::filesystem::absolute(*options.out) == std::filesystem::absolute(*options.residuals))
+      throw InputError("--residuals " + *options.residuals + ": is also the --out file; give two files");
+  }
+  // The rows' residuals are kept only to be written (40 bytes a row).
+  fit_options.keep_residuals = options.residuals.has_value();
+  ProgressLine progress(!options.quiet);
+  fit_options.progress = [&](const scaling::FitProgress& p) {
+    progress.update(fmt::format("fit: {} {} of {}, iteration {}  ({:.0f} s)", p.stage, p.index + 1, p.count,
+                                p.iteration, progress.seconds()));
+  };
   fit_options.shared_strength = options.shared_strength;
   scaling::GroupedFitOptions grouped_options;
   grouped_options.fit = fit_options;
   if (options.group_by) grouped_options.group_by = parse_group_by(*options.group_by);
   grouped_options.require_growth_ended = options.require_growth_ended;
-  const auto table = scaling::read_radii_csv(options.table);
+  const auto table = scaling::read_radii_csv(options.table, [&](const scaling::RadiiReadProgress& p) {
+    progress.update(
+        p.bytes_total > 0
+            ? fmt::format("fit: reading {}: {} rows, {:.0f} % ({:.0f} s)", options.table, p.rows,
+                          100.0 * double(p.bytes_read) / double(p.bytes_total), progress.seconds())
+            : fmt::format("fit: reading {}: {} rows ({:.0f} s)", options.table, p.rows, progress.seconds()));
+  });
   const auto result = scaling::fit_groups(table, grouped_options);
+  progress.finish();
+  if (options.residuals) {
+    write_atomically(*options.residuals, [&](const std::filesystem::path& tmp) {
+      std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+      if (!file) throw std::runtime_error("cannot create a file in " + tmp.parent_path().string());
+      scaling::write_residuals_csv(file, table, result);
+      file.flush();
+      if (!file) throw std::runtime_error("writing failed (disk full?)");
+    });
+  }
   // A table without grouping columns (or --group-by none) gives the single-fit JSON it always has.
   const auto json = craterkit::cli::with_version(
       result.grouped() ? scaling::grouped_fit_to_json(result)
@@ -102,6 +136,8 @@ void run_fit(const FitCommandOptions& options) {
   } else {
     print_grouped_fit_report(result, table);
     if (options.out) fmt::print("  written: {}\n", *options.out);
+    if (options.residuals)
+      fmt::print("  written: {} (every fitted row's residual and regime)\n", *options.residuals);
   }
 }
 
@@ -129,7 +165,13 @@ void add_fit_command(CLI::App& parent) {
   sub->add_flag("--require-growth-ended", options->require_growth_ended,
                 "Leave out the rows with growth_ended = false (by default they are fitted and flagged)");
   sub->add_option("--starts", options->starts, "Number of starting points (1..1000)")->capture_default_str();
-  sub->add_option("--out", options->out, "Write the fit JSON to this file (atomically)");
+  sub->add_option(
+      "--out", options->out,
+      "Write the fit JSON to this file (atomically): constants, covariance, summary statistics of the "
+      "residuals");
+  sub->add_option("--residuals", options->residuals,
+                  "Write every fitted row's residual and regime to this CSV file (atomically)");
+  sub->add_flag("--quiet", options->quiet, "No progress line on stderr (shown for long reads and fits)");
   sub->add_flag("--json", options->json, "Print the fit JSON instead of text");
   sub->callback([options] { run_fit(*options); });
 }

@@ -1,7 +1,9 @@
 // Text reports of scaling fits (see fit_report.hpp).
 #include "fit_report.hpp"
 
+#include <algorithm>
 #include <map>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -20,17 +22,25 @@ std::string join(const std::vector<std::string>& items, const std::string& separ
   return out;
 }
 
-// "line 9 (run x)" for each line, with the run's name when the table has one.
+// "line 9 (run x)" for each line, with the run's name when the table has one; after the first 20 lines only
+// how many more there are (a table of millions of rows may flag many).
 std::string lines_with_runs(const std::vector<int>& lines, const scaling::RadiiTable& table) {
+  constexpr std::size_t shown = 20;
+  const std::vector<int> listed(lines.begin(),
+                                lines.begin() + static_cast<std::ptrdiff_t>(std::min(shown, lines.size())));
   std::map<int, std::string> runs;
-  for (const auto& row : table.rows) {
-    if (row.run) runs[row.line] = *row.run;
+  if (table.has_run()) {
+    const std::set<int> wanted(listed.begin(), listed.end());
+    for (const auto& row : table.rows) {
+      if (row.run && wanted.contains(row.line)) runs[row.line] = *row.run;
+    }
   }
   std::vector<std::string> items;
-  for (int line : lines) {
+  for (int line : listed) {
     items.push_back(runs.contains(line) ? fmt::format("line {} (run {})", line, runs[line])
                                         : fmt::format("line {}", line));
   }
+  if (lines.size() > shown) items.push_back(fmt::format("and {} more", lines.size() - shown));
   return join(items);
 }
 

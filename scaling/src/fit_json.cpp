@@ -45,15 +45,21 @@ nlohmann::json fit_to_json(const FitResult& fit) {
     matrix.push_back(row);
   }
   out["correlation"] = {{"names", fit.correlation_names}, {"matrix", matrix}};
-  nlohmann::json residuals = nlohmann::json::array();
-  for (const auto& r : fit.residuals) {
-    residuals.push_back({{"line", r.line},
-                         {"observed", r.observed},
-                         {"model", r.model},
-                         {"log_residual", r.log_residual},
-                         {"normalized", r.normalized}});
-  }
-  out["residuals"] = residuals;
+  const ResidualSummary& r = fit.residual_summary;
+  out["residual_summary"] = {{"rows", r.rows},
+                             {"mean_log_residual", r.mean_log_residual},
+                             {"rms_log_residual", r.rms_log_residual},
+                             {"rms_normalized", r.rms_normalized},
+                             {"log_residual_quantiles",
+                              {{"min", r.log_residual_min},
+                               {"p05", r.log_residual_p05},
+                               {"median", r.log_residual_median},
+                               {"p95", r.log_residual_p95},
+                               {"max", r.log_residual_max}}},
+                             {"largest",
+                              {{"line", r.largest_line},
+                               {"log_residual", r.largest_log_residual},
+                               {"normalized", r.largest_normalized}}}};
   return out;
 }
 

@@ -72,37 +72,41 @@ std::vector<PooledColumn> pooled_columns(const RadiiTable& table, const std::vec
   for (std::size_t c = 0; c < table.group_columns.size(); ++c) {
     if (std::find(positions.begin(), positions.end(), c) != positions.end()) continue;
     PooledColumn pooled{table.group_columns[c], {}};
+    std::set<std::string> seen;
     for (const auto& row : table.rows) {
       const auto& value = row.group_values[c];
-      if (std::find(pooled.values.begin(), pooled.values.end(), value) == pooled.values.end())
-        pooled.values.push_back(value);
+      if (seen.insert(value).second) pooled.values.push_back(value);
     }
     out.push_back(pooled);
   }
   return out;
 }
 
-// The rows of one group that are fitted, and what is known of them before the fit.
-GroupFit describe_rows(const std::vector<ImpactRecord>& rows) {
+// The rows of one group that are fitted (indices into the table), and what is known of them before the fit.
+GroupFit describe_rows(const RadiiTable& table, std::vector<std::uint32_t> rows) {
   GroupFit group;
-  std::set<double> strengths;
+  std::vector<double> strengths;
+  strengths.reserve(rows.size());
   group.min_strength = std::numeric_limits<double>::infinity();
   group.max_strength = 0.0;
-  for (const auto& row : rows) {
+  group.lines.reserve(rows.size());
+  for (const std::uint32_t index : rows) {
+    const ImpactRecord& row = table.rows[index];
     group.lines.push_back(row.line);
-    strengths.insert(row.target.strength);
+    strengths.push_back(row.target.strength);
     group.min_strength = std::min(group.min_strength, row.target.strength);
     group.max_strength = std::max(group.max_strength, row.target.strength);
     if (row.growth_ended == false) group.growth_not_ended.push_back(row.line);
   }
   if (rows.empty()) group.min_strength = 0.0;
-  group.cohesions = static_cast<int>(strengths.size());
+  std::sort(strengths.begin(), strengths.end());
+  group.cohesions = static_cast<int>(std::unique(strengths.begin(), strengths.end()) - strengths.begin());
+  group.rows = std::move(rows);
   return group;
 }
 
-void add_fit(GroupFit& group, const RadiiTable& rows, const FitResult& fit) {
-  group.regimes = row_regimes(rows.rows, fit);
-  group.regime_counts = count_regimes(group.regimes);
+void add_fit(GroupFit& group, const RadiiTable& table, const FitResult& fit) {
+  group.regime_counts = count_regimes(table, group.rows, fit);
   group.fit = fit;
 }
 
@@ -115,30 +119,52 @@ std::string describe(const GroupKey& key) {
   return out;
 }
 
+RowRegime row_regime(const ImpactRecord& row, const FitResult& fit) {
+  Target target = row.target;
+  if (const auto y = fit.strength()) target.strength = *y;
+  RowRegime r;
+  r.line = row.line;
+  r.run = row.run;
+  r.growth_ended = row.growth_ended;
+  r.regime = regime(fit.law(), row.impactor, target);
+  r.strength_to_gravity = r.regime.gravity_share > 0.0 ? r.regime.strength_share / r.regime.gravity_share
+                                                       : std::numeric_limits<double>::infinity();
+  return r;
+}
+
 std::vector<RowRegime> row_regimes(const std::vector<ImpactRecord>& rows, const FitResult& fit) {
   std::vector<RowRegime> out;
-  const ScalingLaw law = fit.law();
-  for (const auto& row : rows) {
-    Target target = row.target;
-    if (const auto y = fit.strength()) target.strength = *y;
-    RowRegime r;
-    r.line = row.line;
-    r.run = row.run;
-    r.growth_ended = row.growth_ended;
-    r.regime = regime(law, row.impactor, target);
-    r.strength_to_gravity = r.regime.gravity_share > 0.0 ? r.regime.strength_share / r.regime.gravity_share
-                                                         : std::numeric_limits<double>::infinity();
-    out.push_back(r);
-  }
+  out.reserve(rows.size());
+  for (const auto& row : rows) out.push_back(row_regime(row, fit));
   return out;
 }
 
+namespace {
+
+void count(RegimeKind kind, RegimeCounts& counts) {
+  if (kind == RegimeKind::gravity) ++counts.gravity;
+  if (kind == RegimeKind::strength) ++counts.strength;
+  if (kind == RegimeKind::transitional) ++counts.transitional;
+}
+
+}  // namespace
+
 RegimeCounts count_regimes(const std::vector<RowRegime>& regimes) {
   RegimeCounts counts;
-  for (const auto& r : regimes) {
-    if (r.regime.kind == RegimeKind::gravity) ++counts.gravity;
-    if (r.regime.kind == RegimeKind::strength) ++counts.strength;
-    if (r.regime.kind == RegimeKind::transitional) ++counts.transitional;
+  for (const auto& r : regimes) count(r.regime.kind, counts);
+  return counts;
+}
+
+RegimeCounts count_regimes(const RadiiTable& table, std::span<const std::uint32_t> rows,
+                           const FitResult& fit) {
+  RegimeCounts counts;
+  const ScalingLaw law = fit.law();
+  const auto y = fit.strength();
+  for (const std::uint32_t index : rows) {
+    const ImpactRecord& row = table.rows[index];
+    Target target = row.target;
+    if (y) target.strength = *y;
+    count(regime(law, row.impactor, target).kind, counts);
   }
   return counts;
 }
@@ -159,44 +185,50 @@ GroupedFitResult fit_groups(const RadiiTable& table, const GroupedFitOptions& op
   }
   const int free_count = free_parameter_count(options.fit);
 
-  // Rows by group, in order of first appearance; excluded rows still make their group appear.
+  // Rows by group (indices into the table, not copies), in order of first appearance; excluded rows still
+  // make their group appear.
+  if (table.rows.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw InputError(table.source + ": " + std::to_string(table.rows.size()) +
+                     " rows; at most 4294967295 rows can be fitted");
+  }
   std::vector<GroupKey> keys;
-  std::vector<RadiiTable> members;
-  for (const auto& row : table.rows) {
+  std::map<GroupKey, std::size_t> key_index;
+  std::vector<std::vector<std::uint32_t>> members;
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    const ImpactRecord& row = table.rows[i];
     GroupKey key;
     for (std::size_t k = 0; k < positions.size(); ++k)
       key.emplace_back(result.group_by[k], row.group_values[positions[k]]);
-    auto it = std::find(keys.begin(), keys.end(), key);
-    if (it == keys.end()) {
-      keys.push_back(key);
-      members.push_back(RadiiTable{table.source, {}, table.group_columns});
-      it = keys.end() - 1;
+    auto [it, inserted] = key_index.emplace(std::move(key), keys.size());
+    if (inserted) {
+      keys.push_back(it->first);
+      members.emplace_back();
     }
     if (options.require_growth_ended && row.growth_ended == false) {
       result.excluded.push_back(row.line);
       continue;
     }
-    members[static_cast<std::size_t>(it - keys.begin())].rows.push_back(row);
+    members[it->second].push_back(static_cast<std::uint32_t>(i));
   }
 
   for (std::size_t g = 0; g < keys.size(); ++g) {
-    const RadiiTable& rows = members[g];
-    GroupFit group = describe_rows(rows.rows);
+    GroupFit group = describe_rows(table, std::move(members[g]));
     group.key = keys[g];
+    const std::size_t rows = group.rows.size();
     if (!result.grouped()) {
       // One fit over everything: the single fit as `craterkit fit` has always done it, errors included.
-      if (rows.rows.empty()) {
+      if (rows == 0) {
         throw InputError(table.source + ": every row has growth_ended = false; nothing is left to fit");
       }
-      add_fit(group, rows, fit_scaling_law(rows, options.fit));
-    } else if (static_cast<int>(rows.rows.size()) <= free_count) {
-      group.not_fitted = std::to_string(rows.rows.size()) + " rows for " + std::to_string(free_count) +
+      add_fit(group, table, fit_scaling_law(table, group.rows, options.fit));
+    } else if (static_cast<int>(rows) <= free_count) {
+      group.not_fitted = std::to_string(rows) + " rows for " + std::to_string(free_count) +
                          " free parameters; at least " + std::to_string(free_count + 1) +
                          " rows are required";
-      if (rows.rows.empty()) group.not_fitted = "every row of the group has growth_ended = false";
+      if (rows == 0) group.not_fitted = "every row of the group has growth_ended = false";
     } else {
       try {
-        add_fit(group, rows, fit_scaling_law(rows, options.fit));
+        add_fit(group, table, fit_scaling_law(table, group.rows, options.fit));
       } catch (const InputError&) {
         throw;  // bad data (file:line), not a property of the group
       } catch (const std::runtime_error& error) {

@@ -1,22 +1,12 @@
-// JSON form of a grouped fit (shape in fit_json.hpp).
+// JSON form of a grouped fit and the residuals CSV (shapes in fit_json.hpp).
+#include <charconv>
 #include <cmath>
+#include <stdexcept>
 
 #include "craterkit/scaling/fit_json.hpp"
 
 namespace craterkit::scaling {
 namespace {
-
-nlohmann::json regime_json(const RowRegime& r) {
-  nlohmann::json out{
-      {"line", r.line},
-      {"regime", to_string(r.regime.kind)},
-      {"gravity_share", r.regime.gravity_share},
-      {"strength_to_gravity", std::isfinite(r.strength_to_gravity) ? nlohmann::json(r.strength_to_gravity)
-                                                                   : nlohmann::json(nullptr)}};
-  if (r.run) out["run"] = *r.run;
-  if (r.growth_ended) out["growth_ended"] = *r.growth_ended;
-  return out;
-}
 
 nlohmann::json group_json(const GroupFit& group) {
   nlohmann::json key = nlohmann::json::object();
@@ -31,9 +21,6 @@ nlohmann::json group_json(const GroupFit& group) {
   out["regime_counts"] = {{"gravity", group.regime_counts.gravity},
                           {"transitional", group.regime_counts.transitional},
                           {"strength", group.regime_counts.strength}};
-  nlohmann::json regimes = nlohmann::json::array();
-  for (const auto& r : group.regimes) regimes.push_back(regime_json(r));
-  out["regimes"] = regimes;
   return out;
 }
 
@@ -52,6 +39,51 @@ nlohmann::json grouped_fit_to_json(const GroupedFitResult& result) {
       {"excluded_rows", {{"require_growth_ended", result.require_growth_ended}, {"lines", result.excluded}}},
       {"notes", result.notes},
       {"groups", groups}};
+}
+
+namespace {
+
+// The shortest text that reads back as the same double ("" for a non-finite value).
+void put_number(std::ostream& out, double value) {
+  if (!std::isfinite(value)) return;
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  out.write(text, end - text);
+}
+
+}  // namespace
+
+void write_residuals_csv(std::ostream& out, const RadiiTable& table, const GroupedFitResult& result) {
+  for (const auto& name : result.group_by) out << name << ",";
+  out << "line";
+  if (table.has_run()) out << "," << kRunColumn;
+  if (table.has_growth_ended()) out << "," << kGrowthEndedColumn;
+  out << ",observed,model,log_residual,normalized,regime,gravity_share,strength_to_gravity\n";
+  for (const auto& group : result.groups) {
+    if (!group.fit) continue;
+    const FitResult& fit = *group.fit;
+    if (fit.residuals.size() != group.rows.size()) {
+      throw std::logic_error("write_residuals_csv: the fit kept no residuals (FitOptions::keep_residuals)");
+    }
+    for (std::size_t k = 0; k < group.rows.size(); ++k) {
+      const ImpactRecord& row = table.rows[group.rows[k]];
+      const FitResidual& r = fit.residuals[k];
+      const RowRegime regime = row_regime(row, fit);
+      for (const auto& [column, value] : group.key) out << value << ",";
+      out << r.line;
+      if (table.has_run()) out << "," << row.run.value_or("");
+      if (table.has_growth_ended()) out << "," << (row.growth_ended.value_or(true) ? "true" : "false");
+      for (const double value : {r.observed, r.model, r.log_residual, r.normalized}) {
+        out << ",";
+        put_number(out, value);
+      }
+      out << "," << to_string(regime.regime.kind) << ",";
+      put_number(out, regime.regime.gravity_share);
+      out << ",";
+      put_number(out, regime.strength_to_gravity);
+      out << "\n";
+    }
+  }
 }
 
 }  // namespace craterkit::scaling

@@ -1,5 +1,6 @@
 // CSV reader and writer of the impacts-and-radii table (format in radii_table.hpp; the header in
 // radii_header.hpp).
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -25,13 +26,25 @@ std::string trim(const std::string& text) {
   return text.substr(first, last - first + 1);
 }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream stream(line);
-  std::string cell;
-  while (std::getline(stream, cell, ',')) cells.push_back(trim(cell));
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
+// The trimmed cells of a line into `cells` (reused from line to line: no allocation per row once the
+// cells' strings have grown).
+void split(const std::string& line, std::vector<std::string>& cells) {
+  std::size_t count = 0, start = 0;
+  while (true) {
+    const std::size_t comma = std::min(line.find(',', start), line.size());
+    if (count == cells.size()) cells.emplace_back();
+    const auto first = line.find_first_not_of(" \t\r", start);
+    if (first == std::string::npos || first >= comma) {
+      cells[count].clear();
+    } else {
+      const auto last = line.find_last_not_of(" \t\r", comma - 1);
+      cells[count].assign(line, first, last - first + 1);
+    }
+    ++count;
+    if (comma == line.size()) break;
+    start = comma + 1;
+  }
+  cells.resize(count);
 }
 
 // One data row: the fit's numbers with their checks, then the information and grouping cells.
@@ -75,19 +88,24 @@ ImpactRecord parse_row(const std::vector<std::string>& cells, const detail::Radi
 
 }  // namespace
 
-RadiiTable parse_radii_csv(std::istream& in, const std::string& source_name) {
+RadiiTable parse_radii_csv(std::istream& in, const std::string& source_name, std::size_t expected_rows,
+                           const RadiiReadCallback& progress) {
   RadiiTable table;
   table.source = source_name;
+  table.rows.reserve(expected_rows);
   std::optional<detail::RadiiHeader> header;
   std::string line;
+  std::vector<std::string> cells;
+  RadiiReadProgress read;
   int line_number = 0;
   while (std::getline(in, line)) {
+    read.bytes_read += line.size() + 1;
     ++line_number;
     // A UTF-8 byte-order mark (spreadsheet exports) is not part of the first column's name.
     if (line_number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
     const std::string content = trim(line);
     if (content.empty() || content.front() == '#') continue;
-    const auto cells = split(content);
+    split(content, cells);
     const std::string where = source_name + ":" + std::to_string(line_number) + ": ";
     if (!header) {
       header = detail::parse_radii_header(cells, where);
@@ -101,16 +119,40 @@ RadiiTable parse_radii_csv(std::istream& in, const std::string& source_name) {
     ImpactRecord row = parse_row(cells, *header, where);
     row.line = line_number;
     table.rows.push_back(std::move(row));
+    if (progress && table.rows.size() % 65536 == 0) {
+      read.rows = table.rows.size();
+      progress(read);
+    }
   }
   if (!header) throw InputError(source_name + ": empty file; a header row and data rows are required");
   if (table.rows.empty()) throw InputError(source_name + ": no data rows after the header");
   return table;
 }
 
-RadiiTable read_radii_csv(const std::filesystem::path& path) {
-  std::ifstream in(path);
+RadiiTable read_radii_csv(const std::filesystem::path& path, const RadiiReadCallback& progress) {
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot open the radii table for reading");
-  return parse_radii_csv(in, path.string());
+  // Lines (an upper bound of the rows), counted in blocks: the rows' array is then allocated once.
+  std::size_t lines = 0;
+  std::vector<char> block(1 << 20);
+  while (in) {
+    in.read(block.data(), static_cast<std::streamsize>(block.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    lines += static_cast<std::size_t>(std::count(block.data(), block.data() + got, '\n'));
+  }
+  in.clear();
+  in.seekg(0);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  RadiiReadCallback with_total;
+  if (progress) {
+    with_total = [&](const RadiiReadProgress& p) {
+      RadiiReadProgress q = p;
+      q.bytes_total = ec ? 0 : size;
+      progress(q);
+    };
+  }
+  return parse_radii_csv(in, path.string(), lines + 1, with_total);
 }
 
 std::string format_radii_csv(const RadiiTable& table) {

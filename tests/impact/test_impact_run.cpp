@@ -312,6 +312,95 @@ TEST(ImpactRun, StoppedAfterEveryCheckpointAndResumedEqualsTheUninterruptedRun) 
   fs::remove_all(base);
 }
 
+// Checkpoints change nothing: the tiny impact with checkpoints every millisecond of wall time (many
+// checkpoints, at steps that depend on the machine's load), and with checkpoints every 15 steps (not a
+// multiple of the sort interval, 20), ends with every file byte for byte equal to the same run without
+// periodic checkpoints. A checkpoint used to rebuild the neighbour lists at the next step, which changed the
+// order of the pair sums and so the last bits of the state (issue 27); checkpoints now fall only after steps
+// after which the search is rebuilt anyway (the next step sorts the particles).
+TEST(ImpactRun, CheckpointsDoNotChangeTheResult) {
+  // The quarter domain to 0.3 s: the shock stage, the switch and the opening crater (to keep the test short).
+  auto config = tiny_impact();
+  config.impact.symmetry = DomainSymmetry::quarter;
+  config.impact.escape_speed = 1.0;
+  config.crater.check_interval = 0.05;
+  config.simulation.run.end_time = 0.3;
+  config.simulation.output.snapshot_times = {0.1, 0.2};
+  config.simulation.output.checkpoint_interval_steps = 0;
+  config.simulation.output.checkpoint_interval_seconds = 0;
+  const auto base = fs::temp_directory_path() / ("craterkit_checkpoint_timing_" + std::to_string(::getpid()));
+
+  const auto plain = run_impact(config, quiet_run_in(base / "none"));
+  ASSERT_TRUE(plain.crater.has_value());
+  const auto sort_interval = config.simulation.solver.neighbours.sort_interval;
+  ASSERT_EQ(sort_interval, 20u);
+
+  struct Variant {
+    const char* name;
+    std::uint64_t steps;
+    double seconds;
+  };
+  for (const Variant variant : {Variant{"wall_clock", 0, 1e-3}, Variant{"steps", 15, 0.0}}) {
+    auto with_checkpoints = config;
+    with_checkpoints.simulation.output.checkpoint_interval_steps = variant.steps;
+    with_checkpoints.simulation.output.checkpoint_interval_seconds = variant.seconds;
+    RunOptions options = quiet_run_in(base / variant.name);
+    std::vector<std::uint64_t> checkpoints;
+    options.after_checkpoint = [&](std::uint64_t step) { checkpoints.push_back(step); };
+    const auto summary = run_impact(with_checkpoints, options);
+    std::printf("%s: %zu checkpoints over %llu steps\n", variant.name, checkpoints.size(),
+                static_cast<unsigned long long>(summary.run.steps));
+    EXPECT_GE(checkpoints.size(), 5u) << variant.name;
+    EXPECT_EQ(summary.run.steps, plain.run.steps) << variant.name;
+    std::size_t compared = 0;
+    for (const auto& entry : fs::directory_iterator(base / "none")) {
+      const auto name = entry.path().filename();
+      const auto other = base / variant.name / name;
+      ASSERT_TRUE(fs::exists(other)) << name << " is missing from the run with checkpoints by "
+                                     << variant.name;
+      EXPECT_TRUE(file_bytes(entry.path()) == file_bytes(other))
+          << name << " differs with checkpoints by " << variant.name;
+      ++compared;
+    }
+    EXPECT_GE(compared, 10u);  // checkpoint, 3 snapshots with sidecars, xdmf, 3 logs, crater files
+  }
+  fs::remove_all(base);
+}
+
+// A resume whose material file changed since the checkpoint (the configuration names the file, not its
+// values) is refused, naming the file; with the file restored it goes on.
+TEST(ImpactRun, ResumeRefusesAChangedMaterialFile) {
+  const auto dir = fs::temp_directory_path() / ("craterkit_resume_material_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  RunOptions options = quiet_run_in(dir / "run");
+  const char* data = std::getenv("CRATERKIT_DATA_DIR");
+  ASSERT_NE(data, nullptr);
+  const fs::path material = dir / "target.toml";
+  fs::copy_file(fs::path(data) / "materials" / "basalt_matrix_ryugu.toml", material);
+  const std::string original = file_bytes(material);
+  auto config = tiny_impact();
+  config.impact.symmetry = DomainSymmetry::quarter;
+  config.impact.target_material = material.string();
+  config.simulation.run.max_steps = 3;
+  (void)run_impact(config, options);
+  options.resume = true;
+  config.simulation.run.max_steps = 5;
+  std::ofstream(material, std::ios::app) << "# edited\n";
+  try {
+    (void)run_impact(config, options);
+    ADD_FAILURE() << "a resume with a changed material file went on";
+  } catch (const craterkit::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("material file " + material.string() + " has changed since checkpoint"),
+              std::string::npos)
+        << what;
+  }
+  std::ofstream(material, std::ios::binary | std::ios::trunc) << original;
+  EXPECT_EQ(run_impact(config, options).run.steps, 5u);
+  fs::remove_all(dir);
+}
+
 // A resumed run whose configuration differs in a key that changes the result is refused, naming the key and
 // both values; one that changes only what may change (the end time) goes on.
 TEST(ImpactRun, ResumeRefusesAChangedConfiguration) {

@@ -89,11 +89,40 @@ assert written == printed
 for name in ("H1", "H2", "mu", "nu"):
     p = written["parameters"][name]
     assert "value" in p and "sigma" in p, name
-for key in ("chi2", "dof", "residuals"):
+for key in ("chi2", "dof", "residual_summary"):
     assert key in written, key
 assert written["dof"] == 32 - 4
+assert "residuals" not in written and written["residual_summary"]["rows"] == 32
 PYEOF
 ls -a "$WORK" | grep -q '\.tmp\.' && fail "a temporary file was left behind"
+
+# fit --residuals: every row's residual in a CSV; the JSON does not repeat the table (its size does not grow
+# with the rows: a table of ten copies of the example's rows gives a JSON of the same size)
+expect_status 0 "" fit "$TABLE" --form hh2011 --out "$WORK/fit.json" --residuals "$WORK/residuals.csv" --quiet
+grep -q "written: $WORK/residuals.csv" "$WORK/out" || fail "fit does not say that it wrote --residuals"
+{ grep -v "^#" "$TABLE" | head -1; for k in 1 2 3 4 5 6 7 8 9 10; do grep -v '^#' "$TABLE" | tail -n +2; done; } >"$WORK/ten.csv"
+expect_status 0 "" fit "$WORK/ten.csv" --form hh2011 --out "$WORK/fit10.json"
+$PY - "$WORK/fit.json" "$WORK/residuals.csv" "$WORK/fit10.json" <<'PYEOF' || fail "fit --residuals or the JSON's size"
+import csv, json, math, os, sys
+fit = json.load(open(sys.argv[1]))
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert list(rows[0].keys()) == ["line", "observed", "model", "log_residual", "normalized", "regime",
+                                "gravity_share", "strength_to_gravity"], list(rows[0].keys())
+assert len(rows) == 32 == fit["residual_summary"]["rows"]
+logs = [float(r["log_residual"]) for r in rows]
+for r in rows:
+    assert math.isclose(float(r["log_residual"]), math.log(float(r["model"]) / float(r["observed"])), abs_tol=1e-12)
+    assert r["regime"] in ("gravity", "transitional", "strength")
+s = fit["residual_summary"]
+assert math.isclose(s["rms_log_residual"], math.sqrt(sum(x * x for x in logs) / 32), rel_tol=1e-12)
+assert s["log_residual_quantiles"]["min"] == min(logs) and s["log_residual_quantiles"]["max"] == max(logs)
+sizes = [os.path.getsize(sys.argv[1]), os.path.getsize(sys.argv[3])]
+assert json.load(open(sys.argv[3]))["residual_summary"]["rows"] == 320
+assert abs(sizes[1] - sizes[0]) < 200, sizes
+PYEOF
+expect_status 2 "--residuals" fit "$TABLE" --residuals "$WORK/no/such/folder/r.csv" --out "$WORK/never.json"
+expect_status 2 "--residuals" fit "$TABLE" --residuals "$WORK/never.json" --out "$WORK/never.json"
+[ -e "$WORK/never.json" ] && fail "fit wrote its output despite an error"
 expect_status 0 "" fit "$TABLE" --fix nu=0.4 --json
 $PY - "$WORK/out" <<'PYEOF' || fail "fixed parameter not reported with sigma 0"
 import json, sys
@@ -136,12 +165,18 @@ for g in groups:
         p = g["fit"]["parameters"][name]
         assert abs(p["value"] - value) < 2 * p["sigma"], (g["group"], name, p, value)
     assert g["fit"]["parameters"]["nu"]["fixed"]
-    assert len(g["regimes"]) == 30 and sum(g["regime_counts"].values()) == 30
-    assert all(r["regime"] in ("gravity", "transitional", "strength") and "run" in r for r in g["regimes"])
+    assert "regimes" not in g and sum(g["regime_counts"].values()) == 30
     flagged += len(g["growth_not_ended"])
 assert flagged == 3 and written["excluded_rows"]["lines"] == []
 PYEOF
-expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4
+expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4 --residuals "$WORK/group_residuals.csv"
+$PY - "$WORK/group_residuals.csv" <<'PYEOF' || fail "grouped fit --residuals"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert list(rows[0].keys())[:6] == ["friction", "porosity", "resolution", "line", "run", "growth_ended"]
+assert len(rows) == 60 and [r["friction"] for r in rows] == ["0.55"] * 30 + ["0.8"] * 30
+assert all(r["run"] and r["regime"] in ("gravity", "transitional", "strength") for r in rows)
+PYEOF
 grep -q "== friction=0.55, porosity=0.5, resolution=18" "$WORK/out" || fail "grouped text report lacks the group heading"
 [ "$(grep -c "regimes (strength/gravity" "$WORK/out")" -eq 2 ] || fail "grouped text report lacks regime counts"
 grep -q "growth_ended = false" "$WORK/out" || fail "grouped text report does not flag rows whose growth had not ended"
@@ -149,7 +184,7 @@ expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4 --group-by none --j
 $PY - "$WORK/out" <<'PYEOF' || fail "--group-by none is not one single fit"
 import json, sys
 d = json.load(open(sys.argv[1]))
-assert "groups" not in d and "parameters" in d and len(d["residuals"]) == 60
+assert "groups" not in d and "parameters" in d and d["residual_summary"]["rows"] == 60
 PYEOF
 expect_status 0 "" fit "$GROUPED" --form hh2011 --fix nu=0.4 --group-by friction --require-growth-ended --json
 $PY - "$WORK/out" <<'PYEOF' || fail "--group-by friction --require-growth-ended"

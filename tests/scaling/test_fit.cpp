@@ -3,6 +3,7 @@
 // strength, the JSON round trip and the input errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -245,9 +246,9 @@ TEST(Fit, JsonRoundTripGivesTheSameLaw) {
   cs::FitOptions options;
   const auto fit = cs::fit_scaling_law(table, options);
   const auto json = cs::fit_to_json(fit);
-  for (const auto& key : {"parameters", "chi2", "dof", "residuals", "correlation"})
+  for (const auto& key : {"parameters", "chi2", "dof", "residual_summary", "correlation"})
     EXPECT_TRUE(json.contains(key));
-  EXPECT_EQ(json["residuals"].size(), table.rows.size());
+  EXPECT_EQ(json["residual_summary"]["rows"], table.rows.size());
   const auto back = cs::fitted_law_from_json(json, "fit.json");
   EXPECT_EQ(back.law.form, cs::Form::holsapple);
   EXPECT_DOUBLE_EQ(back.law.coefficient_1, fit.law().coefficient_1);
@@ -256,6 +257,64 @@ TEST(Fit, JsonRoundTripGivesTheSameLaw) {
   EXPECT_FALSE(back.strength.has_value());
   EXPECT_THROW(cs::fitted_law_from_json(nlohmann::json{{"form", "holsapple"}}, "x.json"),
                craterkit::InputError);
+}
+
+// The fit JSON does not repeat the table: a table 8 times as long gives a JSON of the same size (issue 27:
+// 4 million rows gave 744 MB of per-row residuals). Its residual summary is that of the rows' residuals,
+// which a fit keeps only when asked (FitOptions::keep_residuals) and which then do not change the fit.
+TEST(Fit, JsonSizeDoesNotGrowWithTheRowsAndSummarisesTheResiduals) {
+  Grid small;
+  Grid large;
+  large.velocities = {1000.0, 1500.0, 2000.0, 3000.0, 4000.0, 6000.0, 8000.0, 10000.0};
+  large.strengths = {0.05, 0.2, 0.5, 2.0, 5.0, 20.0, 50.0, 200.0};
+  const auto few = synthetic(truth_hh(), small, 11);
+  const auto many = synthetic(truth_hh(), large, 11);
+  ASSERT_EQ(many.rows.size(), 8 * few.rows.size());
+  cs::FitOptions options;
+  options.form = cs::Form::hh2011;
+  const auto fit_few = cs::fit_scaling_law(few, options);
+  const auto fit_many = cs::fit_scaling_law(many, options);
+  expect_within_two_sigma(fit_many, truth_hh());
+  const auto size_few = cs::fit_to_json(fit_few).dump(2).size();
+  const auto size_many = cs::fit_to_json(fit_many).dump(2).size();
+  EXPECT_LT(size_many, size_few + 100) << size_few << " bytes for " << few.rows.size() << " rows, "
+                                       << size_many << " for " << many.rows.size();
+
+  // The summary against the rows' residuals.
+  const auto& s = fit_many.residual_summary;
+  const auto& r = fit_many.residuals;
+  ASSERT_EQ(r.size(), many.rows.size());
+  EXPECT_EQ(s.rows, many.rows.size());
+  double sum = 0.0, squares = 0.0, chi2 = 0.0;
+  std::vector<double> sorted;
+  std::size_t largest = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    sum += r[i].log_residual;
+    squares += r[i].log_residual * r[i].log_residual;
+    chi2 += r[i].normalized * r[i].normalized;
+    sorted.push_back(r[i].log_residual);
+    if (std::abs(r[i].normalized) > std::abs(r[largest].normalized)) largest = i;
+  }
+  std::sort(sorted.begin(), sorted.end());
+  const auto n = static_cast<double>(r.size());
+  EXPECT_NEAR(s.mean_log_residual, sum / n, 1e-15);
+  EXPECT_NEAR(s.rms_log_residual, std::sqrt(squares / n), 1e-15);
+  EXPECT_NEAR(s.rms_normalized, std::sqrt(chi2 / n), 1e-12);
+  EXPECT_NEAR(fit_many.chi2, chi2, 1e-9 * chi2);
+  EXPECT_EQ(s.log_residual_min, sorted.front());
+  EXPECT_EQ(s.log_residual_max, sorted.back());
+  EXPECT_EQ(s.log_residual_median, sorted[sorted.size() / 2 - 1]);  // nearest rank: ceil(0.5 n) = n / 2
+  EXPECT_EQ(s.log_residual_p05, sorted[static_cast<std::size_t>(std::ceil(0.05 * n)) - 1]);
+  EXPECT_EQ(s.log_residual_p95, sorted[static_cast<std::size_t>(std::ceil(0.95 * n)) - 1]);
+  EXPECT_EQ(s.largest_line, r[largest].line);
+  EXPECT_EQ(s.largest_normalized, r[largest].normalized);
+  // kNoise is the scatter of ln R about the law.
+  EXPECT_NEAR(s.rms_log_residual, kNoise, 0.2 * kNoise);
+
+  options.keep_residuals = false;
+  const auto lean = cs::fit_scaling_law(many, options);
+  EXPECT_TRUE(lean.residuals.empty());
+  EXPECT_EQ(cs::fit_to_json(lean).dump(), cs::fit_to_json(fit_many).dump());
 }
 
 TEST(Fit, BadOptionsAreNamed) {

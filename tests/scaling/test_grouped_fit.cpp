@@ -10,6 +10,7 @@
 #include <random>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -130,7 +131,8 @@ TEST(GroupedFit, RecoversEachGroupsConstants) {
           << p.value << " +- " << p.sigma << " vs " << truth_value(truth.law, p.name);
     }
     EXPECT_EQ(group.fit->dof, 30 - 3);
-    EXPECT_EQ(group.regimes.size(), 30u);
+    const auto& counts = group.regime_counts;
+    EXPECT_EQ(counts.gravity + counts.transitional + counts.strength, 30);
   }
   // The two groups' mu differ (0.44 against 0.40) by many sigmas: the fits did not mix the groups.
   const auto& mu_a = result.groups[0].fit->parameter("mu");
@@ -185,7 +187,7 @@ TEST(GroupedFit, RowsFarInsideARegimeAreClassifiedSo) {
   const auto table = parse(sweep_csv({two_frictions().front()}, grid, 4));
   const auto result = cs::fit_groups(table, hh_fixed_nu());
   ASSERT_TRUE(result.groups.front().fit.has_value());
-  const auto& regimes = result.groups.front().regimes;
+  const auto regimes = cs::row_regimes(table.rows, *result.groups.front().fit);
   ASSERT_EQ(regimes.size(), table.rows.size());
   for (std::size_t i = 0; i < regimes.size(); ++i) {
     const double y = table.rows[i].target.strength;
@@ -267,7 +269,8 @@ TEST(GroupedFit, GroupsTooSmallOrBlindAreReportedNotFatal) {
   EXPECT_FALSE(too_small.fit.has_value());
   EXPECT_NE(too_small.not_fitted.find("3 rows for 3 free parameters"), std::string::npos)
       << too_small.not_fitted;
-  EXPECT_TRUE(too_small.regimes.empty());
+  const auto& none = too_small.regime_counts;
+  EXPECT_EQ(none.gravity + none.transitional + none.strength, 0);
   const auto& gravity = result.groups[3];
   ASSERT_TRUE(gravity.fit.has_value());
   EXPECT_EQ(gravity.cohesions, 1);
@@ -293,9 +296,7 @@ TEST(GroupedFit, JsonHasOneEntryPerGroupAndGivesEachGroupsLaw) {
   EXPECT_EQ(first["group"]["resolution"], "18");
   EXPECT_EQ(first["rows"], 30);
   EXPECT_EQ(first["fit"].dump(), cs::fit_to_json(*result.groups[0].fit).dump());
-  EXPECT_EQ(first["regimes"].size(), 30u);
-  EXPECT_EQ(first["regimes"][0]["run"], table.rows[0].run.value());
-  EXPECT_TRUE(first["regimes"][0].contains("growth_ended"));
+  EXPECT_FALSE(first.contains("regimes"));  // per row only in the residuals CSV
   const int counted = first["regime_counts"]["gravity"].get<int>() +
                       first["regime_counts"]["transitional"].get<int>() +
                       first["regime_counts"]["strength"].get<int>();
@@ -330,6 +331,71 @@ TEST(GroupedFit, JsonHasOneEntryPerGroupAndGivesEachGroupsLaw) {
   const auto single = cs::fit_to_json(*result.groups[0].fit);
   EXPECT_THROW(cs::fitted_law_from_json(single, "f.json", "friction=0.55"), craterkit::InputError);
   EXPECT_TRUE(cs::fitted_law_from_json(single, "f.json").covariance.has_covariance());
+}
+
+// --residuals: one CSV line per fitted row, in group order, with the row's residuals as the fit computed them
+// (read back exactly) and its regime; the model radius is the group's law at the row. Rows left out and
+// groups not fitted are not listed.
+TEST(GroupedFit, ResidualsCsvListsEveryFittedRowWithItsRegime) {
+  const auto not_ended = [](const std::string& friction, double mass, double y) {
+    return friction == "0.8" && mass == 2.0 && y > 1.0;
+  };
+  const auto table = parse(sweep_csv(two_frictions(), SweepGrid{}, 1, not_ended));
+  auto options = hh_fixed_nu();
+  options.group_by = std::vector<std::string>{"friction"};
+  options.require_growth_ended = true;
+  const auto result = cs::fit_groups(table, options);
+  ASSERT_EQ(result.excluded.size(), 2u);
+  std::ostringstream out;
+  cs::write_residuals_csv(out, table, result);
+  std::istringstream in(out.str());
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line,
+            "friction,line,run,growth_ended,observed,model,log_residual,normalized,regime,gravity_share,"
+            "strength_to_gravity");
+  std::size_t rows = 0;
+  for (const auto& group : result.groups) {
+    ASSERT_TRUE(group.fit.has_value());
+    for (std::size_t k = 0; k < group.rows.size(); ++k, ++rows) {
+      ASSERT_TRUE(std::getline(in, line)) << "row " << rows;
+      std::vector<std::string> cells;
+      std::stringstream split(line);
+      for (std::string cell; std::getline(split, cell, ',');) cells.push_back(cell);
+      if (!line.empty() && line.back() == ',') cells.emplace_back();
+      ASSERT_EQ(cells.size(), 11u) << line;
+      const auto& row = table.rows[group.rows[k]];
+      const auto& r = group.fit->residuals[k];
+      EXPECT_EQ(cells[0], group.key.front().second);
+      EXPECT_EQ(std::stoi(cells[1]), row.line);
+      EXPECT_EQ(cells[2], row.run.value());
+      EXPECT_EQ(cells[3], "true");
+      EXPECT_EQ(std::stod(cells[4]), row.crater_radius);
+      EXPECT_EQ(std::stod(cells[5]), r.model);
+      EXPECT_EQ(std::stod(cells[6]), r.log_residual);
+      EXPECT_EQ(std::stod(cells[7]), r.normalized);
+      const double model = cs::crater_radius(group.fit->law(), row.impactor, row.target);
+      EXPECT_NEAR(std::stod(cells[5]), model, 1e-12 * model);
+      EXPECT_NEAR(std::stod(cells[6]), std::log(model / row.crater_radius), 1e-12);
+      EXPECT_NEAR(std::stod(cells[7]), std::stod(cells[6]) / (*row.crater_radius_sigma / row.crater_radius),
+                  1e-9);
+      const auto regime = cs::row_regime(row, *group.fit);
+      EXPECT_EQ(cells[8], cs::to_string(regime.regime.kind));
+      EXPECT_EQ(std::stod(cells[9]), regime.regime.gravity_share);
+      if (std::isfinite(regime.strength_to_gravity)) {
+        EXPECT_EQ(std::stod(cells[10]), regime.strength_to_gravity);
+      } else {
+        EXPECT_EQ(cells[10], "");
+      }
+    }
+  }
+  EXPECT_EQ(rows, table.rows.size() - 2);
+  EXPECT_FALSE(std::getline(in, line)) << "a line too many: " << line;
+
+  // Without the rows' residuals there is nothing to write.
+  options.fit.keep_residuals = false;
+  std::ostringstream lean;
+  EXPECT_THROW(cs::write_residuals_csv(lean, table, cs::fit_groups(table, options)), std::logic_error);
 }
 
 TEST(GroupedFit, OneNumberWrittenTwoWaysIsNoted) {

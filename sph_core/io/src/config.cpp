@@ -140,7 +140,22 @@ SimulationConfig parse_simulation_config(TomlTable& root, const SimulationConfig
   read_time_step(root.table("time_step"), c.solver);
   read_neighbours(root.table("neighbours"), c.solver);
   read_output(root.table("output"), c.output);
+  check_checkpoint_timing(c, root.source() + ": ");
   return c;
+}
+
+void check_checkpoint_timing(const SimulationConfig& config, const std::string& where) {
+  if (config.output.checkpoint_interval_seconds > 0 && config.solver.neighbours.sort_interval == 0) {
+    throw InputError(
+        where +
+        "output.checkpoint_interval_seconds = " + format_number(config.output.checkpoint_interval_seconds) +
+        " with neighbours.sort_interval = 0 is not allowed: without curve sorts every checkpoint has to "
+        "rebuild "
+        "the neighbour lists, so checkpoints at wall-clock moments would make the result depend on the "
+        "machine's load. Set neighbours.sort_interval > 0 (default 20), or "
+        "output.checkpoint_interval_seconds = "
+        "0 (with checkpoint_interval_steps = N for checkpoints by step count)");
+  }
 }
 
 }  // namespace craterkit::sph

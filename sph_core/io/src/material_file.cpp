@@ -1,14 +1,19 @@
 #include "craterkit/sph/io/material_file.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "craterkit/common/data_catalogue.hpp"
 #include "craterkit/common/format_number.hpp"
+#include "craterkit/common/input_error.hpp"
 #include "craterkit/common/toml_table.hpp"
 
 namespace craterkit::sph {
@@ -173,6 +178,25 @@ Material parse_material(TomlTable& top, const std::string& name) {
 
 }  // namespace
 
+std::string file_hash(const std::filesystem::path& file) {
+  // FNV-1a, 64 bits: enough to notice an edited file (not a defence against a deliberate collision).
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot open the file to hash it");
+  std::uint64_t hash = 0xcbf29ce484222325ULL;
+  std::vector<char> buffer(1 << 16);
+  while (in) {
+    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    const auto n = static_cast<std::size_t>(in.gcount());
+    for (std::size_t i = 0; i < n; ++i) {
+      hash ^= static_cast<std::uint8_t>(buffer[i]);
+      hash *= 0x100000001b3ULL;
+    }
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(hash));
+  return text;
+}
+
 std::vector<std::string> material_names() {
   return data_set_names("materials");
 }
@@ -180,7 +204,10 @@ std::vector<std::string> material_names() {
 Material load_material(const std::string& name_or_path) {
   const auto file = resolve_data_set(name_or_path, "materials", "material");
   TomlTable top = TomlTable::parse_file(file);
-  return parse_material(top, file.stem().string());
+  Material material = parse_material(top, file.stem().string());
+  material.source_file = file.string();
+  material.source_hash = file_hash(file);
+  return material;
 }
 
 }  // namespace craterkit::sph

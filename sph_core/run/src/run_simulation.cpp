@@ -28,43 +28,68 @@ using Clock = std::chrono::steady_clock;
 
 // The checkpoint of the run: when it is due, and what it holds (the solver's state, the run record and what
 // every observer needs to resume).
+//
+// When: a checkpoint must not change the run. The neighbour lists depend on the search built at the last
+// restructure, and a resumed run builds its search afresh; a checkpoint after a step whose successor does not
+// rebuild would therefore need a rebuild that the run without it does not make (different sum orders, other
+// last bits). So with curve sorting on (sort_interval > 0) checkpoints are written only after the steps after
+// which the engine sorts and rebuilds anyway (Simulation::next_step_sorts()): by step count every
+// checkpoint_interval_steps rounded up to a multiple of sort_interval, and by wall clock at the first such
+// step after the interval has passed. Whether or when checkpoints are written then changes no result. Without
+// sorting a checkpoint forces the rebuild (results then depend on the step-counted checkpoints' steps; wall-
+// clock checkpoints are refused then, check_checkpoint_timing() in io/config.hpp).
 class Checkpoints {
  public:
-  Checkpoints(std::filesystem::path path, const OutputParameters& output, const RunAttributes& record,
-              std::span<RunObserver* const> observers)
-      : path_(std::move(path)), output_(output), record_(record), observers_(observers) {}
+  Checkpoints(std::filesystem::path path, const OutputParameters& output, std::uint64_t sort_interval,
+              const RunAttributes& record, std::span<RunObserver* const> observers)
+      : path_(std::move(path)),
+        output_(output),
+        step_interval_(rounded_up(output.checkpoint_interval_steps, sort_interval)),
+        record_(record),
+        observers_(observers) {}
 
   [[nodiscard]] const std::filesystem::path& path() const { return path_; }
 
   // True when a checkpoint was written.
   bool write_if_due(Simulation& simulation) {
-    const auto now = Clock::now();
-    const bool by_steps = output_.checkpoint_interval_steps > 0 &&
-                          simulation.step_count() % output_.checkpoint_interval_steps == 0;
-    const bool by_wall =
-        output_.checkpoint_interval_seconds > 0 &&
-        std::chrono::duration<double>(now - last_).count() >= output_.checkpoint_interval_seconds;
+    if (output_.checkpoint_interval_seconds > 0 &&
+        std::chrono::duration<double>(Clock::now() - last_).count() >= output_.checkpoint_interval_seconds) {
+      wall_clock_due_ = true;
+    }
+    const bool by_steps = step_interval_ > 0 && simulation.step_count() % step_interval_ == 0;
+    const bool by_wall = wall_clock_due_ && simulation.next_step_sorts();
     if (!by_steps && !by_wall) return false;
     write(simulation);
-    last_ = now;
     return true;
   }
 
+  // Also the final checkpoint, at whatever step the run ends: a resume from it continues only when the run
+  // is extended (end_time, max_steps), and is then exact when that step is one after which the next sorts.
   void write(Simulation& simulation) {
     auto scope = simulation.timers().measure("output");
     RunAttributes a = run_attributes(simulation, record_);
     for (const RunObserver* o : observers_) o->save(a);
     write_checkpoint(path_, simulation.particles(), a);
-    // A resumed run builds its neighbour lists afresh: so does this one, to follow the same sequence.
-    simulation.force_neighbour_rebuild();
+    // A resumed run builds its neighbour lists afresh: so does this one, to follow the same sequence (the
+    // next step's sort does that anyway when it comes).
+    if (!simulation.next_step_sorts()) simulation.force_neighbour_rebuild();
+    last_ = Clock::now();
+    wall_clock_due_ = false;
   }
 
  private:
+  // n rounded up to a multiple of m (n when m is 0).
+  static std::uint64_t rounded_up(std::uint64_t n, std::uint64_t m) {
+    return m == 0 ? n : (n + m - 1) / m * m;
+  }
+
   std::filesystem::path path_;
   const OutputParameters& output_;
+  std::uint64_t step_interval_;
   const RunAttributes& record_;
   std::span<RunObserver* const> observers_;
   Clock::time_point last_ = Clock::now();
+  bool wall_clock_due_ = false;
 };
 
 std::map<std::string, std::string> configuration_values(const std::string& listing) {
@@ -104,6 +129,45 @@ void check_resumed_configuration(const std::filesystem::path& path, const RunAtt
   }
 }
 
+// The material files of a problem, one line "<index> <hash> <file>" per material read from a file: the run
+// record's text "material_files", against which a resume checks that no material file changed.
+std::string material_files(const ProblemSetup& problem) {
+  std::string lines;
+  for (std::size_t i = 0; i < problem.materials.size(); ++i) {
+    const Material& m = problem.materials[i];
+    if (m.source_file.empty()) continue;
+    lines += std::to_string(i) + " " + m.source_hash + " " + m.source_file + "\n";
+  }
+  return lines;
+}
+
+// Refuses a resume when a material file of the checkpoint's run has other contents now: the configuration
+// names the material, not its values, and a changed file would continue the run with other physics.
+void check_resumed_material_files(const std::filesystem::path& path, const RunAttributes& checkpoint,
+                                  const std::string& now) {
+  const auto stored = checkpoint.texts.find("material_files");
+  if (stored == checkpoint.texts.end()) return;  // a checkpoint written before material files were recorded
+  const auto by_index = [](const std::string& text) {
+    std::map<std::string, std::pair<std::string, std::string>> out;  // index -> (hash, file)
+    std::istringstream in(text);
+    std::string index, hash, file;
+    while (in >> index >> hash && std::getline(in >> std::ws, file)) out[index] = {hash, file};
+    return out;
+  };
+  const auto then = by_index(stored->second);
+  for (const auto& [index, current] : by_index(now)) {
+    const auto old = then.find(index);
+    if (old == then.end() || old->second.first == current.first) continue;
+    const bool moved = old->second.second != current.second;
+    throw InputError(
+        "--resume: material file " + current.second + " has changed since checkpoint " + path.string() +
+        " was written" + (moved ? " (from " + old->second.second + " then)" : std::string()) + ": hash " +
+        current.first + " now, " + old->second.first +
+        " in the checkpoint. A resumed run must use the material values it started with: restore "
+        "the file, or start the changed run in another --out folder");
+  }
+}
+
 // Removes the temporary files that killed runs left in the output folder (".<name>.tmp.<pid>" of a
 // process that no longer runs).
 void remove_stale_temporaries(const std::filesystem::path& directory) {
@@ -134,6 +198,7 @@ std::unique_ptr<Simulation> resume_simulation(const SimulationConfig& config, Pr
                      "\", configuration: \"" + expected + "\")");
   }
   check_resumed_configuration(path, *checkpoint, configuration);
+  check_resumed_material_files(path, *checkpoint, material_files(problem));
   try {
     return std::make_unique<Simulation>(config.solver, std::move(problem), std::move(particles),
                                         read_solver_state(*checkpoint, "checkpoint"));
@@ -185,6 +250,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   const auto wall_start = Clock::now();
   const bool files = !options.output_directory.empty();
   const fs::path out = options.output_directory;
+  if (files) check_checkpoint_timing(config, "");
   if (files) {
     fs::create_directories(out);
     remove_stale_temporaries(out);
@@ -194,6 +260,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   record.texts["problem_name"] = config.name;
   record.texts["craterkit_version"] = craterkit::version();
   if (!options.configuration.empty()) record.texts["configuration"] = options.configuration;
+  if (const std::string listed = material_files(problem); !listed.empty())
+    record.texts["material_files"] = listed;
   RunSummary summary;
   summary.name = config.name;
   summary.setup = record.texts.count("setup") != 0 ? record.texts.at("setup") : "";
@@ -217,7 +285,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   if (files && config.output.conservation_log) observers.push_back(&conservation);
   if (files) observers.push_back(&snapshots);
   observers.insert(observers.end(), scenario_observers.begin(), scenario_observers.end());
-  Checkpoints checkpoints(out / "checkpoint.h5", config.output, record, observers);
+  Checkpoints checkpoints(out / "checkpoint.h5", config.output, config.solver.neighbours.sort_interval,
+                          record, observers);
 
   ProgressOptions progress_options;
   progress_options.enabled = options.progress;

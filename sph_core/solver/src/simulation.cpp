@@ -393,8 +393,7 @@ void Simulation::step(double target_time) {
   }
   if (!(dt > 0.0)) throw std::runtime_error("time step not positive at t = " + std::to_string(time_));
 
-  const auto sort_interval = parameters_.neighbours.sort_interval;
-  if (sort_interval > 0 && step_ % sort_interval == 0) {
+  if (next_step_sorts()) {
     auto scope = timers_.measure("sort");
     curve_order(std::span<const double>(p.x).first(active_), std::span<const double>(p.y).first(active_),
                 std::span<const double>(p.z).first(active_), order_);

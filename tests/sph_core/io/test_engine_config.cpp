@@ -116,3 +116,23 @@ TEST(StandardProblemConfig, ImpactTablesAreRefused) {
   EXPECT_NE(error_of("[problem]\nsetup = \"impact\"\n[run]\nend_time = 1\n").find("problem.setup"),
             std::string::npos);
 }
+
+// Checkpoints by wall clock need curve sorts: without them a checkpoint has to rebuild the neighbour lists,
+// and at wall-clock moments the result would depend on the machine's load (run_simulation.hpp). The default
+// interval (600 s) is refused with sort_interval = 0 too, naming both keys; checkpoints by step count are
+// allowed.
+TEST(StandardProblemConfig, WallClockCheckpointsNeedCurveSorts) {
+  const std::string unsorted = minimal + "[neighbours]\nsort_interval = 0\n";
+  for (const std::string& text : {unsorted, unsorted + "[output]\ncheckpoint_interval_seconds = 60\n"}) {
+    const std::string message = error_of(text);
+    EXPECT_NE(message.find("test.toml: output.checkpoint_interval_seconds = "), std::string::npos) << message;
+    EXPECT_NE(message.find("neighbours.sort_interval = 0 is not allowed"), std::string::npos) << message;
+  }
+  const auto by_steps =
+      parse(unsorted + "[output]\ncheckpoint_interval_seconds = 0\ncheckpoint_interval_steps = 7\n");
+  EXPECT_EQ(by_steps.simulation.solver.neighbours.sort_interval, 0u);
+  EXPECT_EQ(by_steps.simulation.output.checkpoint_interval_steps, 7u);
+  EXPECT_EQ(parse(minimal + "[output]\ncheckpoint_interval_seconds = 60\n")
+                .simulation.output.checkpoint_interval_seconds,
+            60.0);
+}

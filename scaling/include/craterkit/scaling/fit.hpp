@@ -23,7 +23,11 @@
 //    a coefficient or Y, the bound for mu, 2 (i.e. the bound) for nu) and re-optimising the others raises
 //    chi^2 by less than 4 (two sigma), e.g. K2 when every row is gravity-dominated (only an upper limit).
 // A parameter at a bound is flagged at_bound (its sigma is then not meaningful).
+#include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,6 +38,15 @@
 
 namespace craterkit::scaling {
 
+// Where a fit is: stage "start", "profile" or "covariance", the number of that stage being worked on
+// (0-based) of how many, and the solver's iteration in it (0 before the first).
+struct FitProgress {
+  std::string stage;
+  int index = 0;
+  int count = 0;
+  int iteration = 0;
+};
+
 struct FitOptions {
   Form form = Form::holsapple;
   // Parameters held fixed, by name (K1, K2 or H1, H2, mu, nu, Y); other names are InputErrors.
@@ -42,6 +55,12 @@ struct FitOptions {
   bool shared_strength = false;
   int starts = 12;            // number of starting points (>= 1)
   unsigned int seed = 20221;  // seed of the starting-point spread (results are reproducible)
+  // Keep every row's residual in FitResult::residuals (one FitResidual, 40 bytes, per row); without it only
+  // FitResult::residual_summary is filled, which is what `craterkit fit` needs unless --residuals is given.
+  bool keep_residuals = true;
+  // Called at each solve (every start, every profile), after each of its iterations, and at the covariance,
+  // for a progress line on large tables (a solve over millions of rows takes minutes).
+  std::function<void(const FitProgress&)> progress;
 };
 
 struct FittedParameter {
@@ -61,6 +80,22 @@ struct FitResidual {
   double normalized = 0.0;    // log_residual / s_i
 };
 
+// Summary statistics of the residuals at the minimum, over every fitted row: what the fit JSON holds
+// instead of one entry per row (a table of millions of rows gave a JSON of hundreds of megabytes).
+struct ResidualSummary {
+  std::size_t rows = 0;
+  double mean_log_residual = 0.0;  // mean of ln R_model - ln R
+  double rms_log_residual = 0.0;   // root mean square of ln R_model - ln R
+  double rms_normalized = 0.0;     // sqrt(chi2 / rows)
+  // Quantiles of ln R_model - ln R: smallest, 5 %, median, 95 %, largest (nearest rank).
+  double log_residual_min = 0.0, log_residual_p05 = 0.0, log_residual_median = 0.0, log_residual_p95 = 0.0,
+         log_residual_max = 0.0;
+  // The row with the largest |normalized residual|: its table line and residuals.
+  int largest_line = 0;
+  double largest_log_residual = 0.0;
+  double largest_normalized = 0.0;
+};
+
 struct FitResult {
   Form form = Form::holsapple;
   bool shared_strength = false;
@@ -74,7 +109,8 @@ struct FitResult {
   double sigma_scale = 1.0;  // factor applied to the covariance (chi2/dof when unweighted)
   int starts = 0;
   int starts_at_minimum = 0;  // starts that converged to the reported minimum (cost within 1e-6)
-  std::vector<FitResidual> residuals;
+  ResidualSummary residual_summary;
+  std::vector<FitResidual> residuals;  // one per fitted row, in table order (FitOptions::keep_residuals)
 
   const FittedParameter& parameter(const std::string& name) const;  // throws std::out_of_range
   ScalingLaw law() const;                                           // fitted law (in `form`)
@@ -84,6 +120,10 @@ struct FitResult {
 // Throws InputError for unknown or duplicated fixed names, a table with fewer rows than free parameters,
 // or shared_strength with a fixed Y that is not > 0 and finite.
 FitResult fit_scaling_law(const RadiiTable& table, const FitOptions& options);
+// The same over the rows of `table` at the given indices (in that order): a group of a table, fitted
+// without copying its rows.
+FitResult fit_scaling_law(const RadiiTable& table, std::span<const std::uint32_t> rows,
+                          const FitOptions& options);
 
 // The number of parameters fit_scaling_law would fit (c1, c2, mu, nu and a shared Y, less the fixed ones),
 // after the same checks of the options (InputError for an unknown, repeated or out-of-range fixed name).

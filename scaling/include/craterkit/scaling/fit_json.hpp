@@ -10,8 +10,12 @@
 //   "shared_strength": b, "chi2": x, "dof": n, "weighted": b, "sigma_scale": x,
 //   "starts": n, "starts_at_minimum": n,
 //   "correlation": {"names": [...], "matrix": [[...], ...]},
-//   "residuals": [{"line": n, "observed": R, "model": R, "log_residual": r, "normalized": r}, ...]
+//   "residual_summary": {"rows": n, "mean_log_residual": x, "rms_log_residual": x, "rms_normalized": x,
+//                        "log_residual_quantiles": {"min": x, "p05": x, "median": x, "p95": x, "max": x},
+//                        "largest": {"line": n, "log_residual": x, "normalized": x}}
 // }
+// Its size does not grow with the table: the rows' residuals (and regimes) go to a CSV file when asked for
+// (write_residuals_csv), not into the JSON, which once repeated every row of the input.
 // A grouped fit (grouped_fit.hpp):
 // {
 //   "form": ..., "group_by": [columns], "pooled": {column: [values], ...}, "rows_read": n,
@@ -19,14 +23,12 @@
 //   "groups": [{"group": {"friction": "0.55", ...}, "rows": n, "cohesions": n, "strength_range": [lo, hi],
 //               "growth_not_ended": [lines],
 //               "fit": {a single fit as above} | null, ["not_fitted": "why", when fit is null]
-//               "regime_counts": {"gravity": n, "transitional": n, "strength": n},
-//               "regimes": [{"line": n, ["run": s,] ["growth_ended": b,] "regime": "gravity" | "transitional"
-//               |
-//                            "strength", "gravity_share": x, "strength_to_gravity": x | null}, ...]}, ...]
+//               "regime_counts": {"gravity": n, "transitional": n, "strength": n}}, ...]
 // }
-// Group values are strings, exactly as written in the table; strength_to_gravity is null without gravity.
+// Group values are strings, exactly as written in the table.
 #include <filesystem>
 #include <optional>
+#include <ostream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -39,6 +41,17 @@ namespace craterkit::scaling {
 
 nlohmann::json fit_to_json(const FitResult& fit);
 nlohmann::json grouped_fit_to_json(const GroupedFitResult& result);
+
+// Every fitted row's residual and regime as CSV (what `craterkit fit --residuals FILE.csv` writes), one line
+// per fitted row, the groups in the result's order and the rows in table order within each:
+//   [the group_by columns,] line, [run,] [growth_ended,] observed, model, log_residual, normalized, regime,
+//   gravity_share, strength_to_gravity
+// (observed and model radii in m, ln R_model - ln R, its normalised form; the regime under the group's law
+// as in the text report; strength_to_gravity empty without gravity). Numbers in the shortest form that
+// reads back exactly. Written row by row, holding nothing per row. Needs the fits' residuals
+// (FitOptions::keep_residuals; std::logic_error without them); rows left out (--require-growth-ended) and the
+// rows of groups that were not fitted are not listed.
+void write_residuals_csv(std::ostream& out, const RadiiTable& table, const GroupedFitResult& result);
 
 struct FittedLaw {
   ScalingLaw law;

@@ -10,7 +10,9 @@
 // is at least 0.9 of the sum (strength/gravity ratio <= 1/9), strength when the strength term is (ratio
 // >= 9), transitional in between. These are the thresholds `craterkit scale` reports with, so that a word
 // means the same in every command. With a shared Y the row's strength is the fitted Y.
+#include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,13 +52,15 @@ using GroupKey = std::vector<std::pair<std::string, std::string>>;  // (column, 
 struct GroupFit {
   GroupKey key;                       // in group_by order; empty for one fit over everything
   std::vector<int> lines;             // table lines of the rows fitted (after any exclusion)
+  std::vector<std::uint32_t> rows;    // their indices in the table's rows
   int cohesions = 0;                  // distinct strengths among them
   double min_strength = 0.0;          // their range, Pa
   double max_strength = 0.0;          //
   std::vector<int> growth_not_ended;  // lines fitted although flagged growth_ended = false
   std::optional<FitResult> fit;       // empty when the group could not be fitted
   std::string not_fitted;             // why, when fit is empty
-  std::vector<RowRegime> regimes;     // one per fitted row (empty without a fit)
+  // The rows' regimes under the fitted law, counted (row_regimes() gives them row by row, and
+  // `craterkit fit --residuals` writes them per row).
   RegimeCounts regime_counts;
 };
 
@@ -86,7 +90,11 @@ GroupedFitResult fit_groups(const RadiiTable& table, const GroupedFitOptions& op
 
 // Regime of each of `rows` under the fitted law (the fitted Y for a shared strength).
 std::vector<RowRegime> row_regimes(const std::vector<ImpactRecord>& rows, const FitResult& fit);
+RowRegime row_regime(const ImpactRecord& row, const FitResult& fit);
 RegimeCounts count_regimes(const std::vector<RowRegime>& regimes);
+// The regimes of the table's rows at `rows` under the fitted law, counted without keeping them.
+RegimeCounts count_regimes(const RadiiTable& table, std::span<const std::uint32_t> rows,
+                           const FitResult& fit);
 
 // "friction=0.55, porosity=0.5"; "all rows" for an empty key.
 std::string describe(const GroupKey& key);

@@ -19,7 +19,9 @@
 // a missing column (with "did you mean" when a header name is close to it), a repeated column, a
 // non-number, NaN/inf, a non-positive radius, density or velocity, a negative gravity or strength, a
 // growth_ended other than true/false, a row with too few or too many cells, and a file without data rows.
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <istream>
 #include <optional>
 #include <string>
@@ -53,8 +55,19 @@ struct RadiiTable {
 inline constexpr const char* kRunColumn = "run";
 inline constexpr const char* kGrowthEndedColumn = "growth_ended";
 
-RadiiTable read_radii_csv(const std::filesystem::path& path);
-RadiiTable parse_radii_csv(std::istream& in, const std::string& source_name);
+// Reading progress, for a progress line on large tables: bytes read of the whole, rows so far.
+struct RadiiReadProgress {
+  std::uint64_t bytes_read = 0;
+  std::uint64_t bytes_total = 0;  // 0 when unknown
+  std::size_t rows = 0;
+};
+using RadiiReadCallback = std::function<void(const RadiiReadProgress&)>;
+
+// read_radii_csv counts the file's lines first, so that the rows are stored once, without the copies a
+// growing array makes (a peak of twice the table's memory); `progress` is called every 65536 rows.
+RadiiTable read_radii_csv(const std::filesystem::path& path, const RadiiReadCallback& progress = {});
+RadiiTable parse_radii_csv(std::istream& in, const std::string& source_name, std::size_t expected_rows = 0,
+                           const RadiiReadCallback& progress = {});
 
 // CSV text of a table (header + rows, full double precision; grouping and information columns after the
 // fit's own), the inverse of parse_radii_csv.

@@ -53,6 +53,14 @@ struct SimulationConfig {
 // skin is 0.1 with block steps (the lists are checked at every substep; otherwise defaults' skin).
 SimulationConfig parse_simulation_config(TomlTable& root, const SimulationConfig& defaults);
 
+// Refuses checkpoints by wall clock without curve sorting (output.checkpoint_interval_seconds > 0 with
+// neighbours.sort_interval = 0): InputError naming both keys, prefixed by `where` (e.g. "FILE: ").
+// Checkpoints change no result only when they fall after steps after which the engine sorts and rebuilds its
+// neighbour search anyway (run_simulation.hpp); without sorts a checkpoint has to force that rebuild, and at
+// wall-clock moments the result would depend on the machine's load. parse_simulation_config() and
+// run_simulation() call it.
+void check_checkpoint_timing(const SimulationConfig& config, const std::string& where);
+
 // The value of [problem] setup, which must be one of `setups`; a table named after another of them is an
 // error (it would be ignored).
 std::string read_problem_setup(TomlTable& root, const std::vector<std::string>& setups);

@@ -37,6 +37,10 @@ struct Material {
   std::string description;                 // material in words (optional in the file)
   std::optional<StrengthModel> strength;   // none: no deviatoric stress (a fluid)
   std::optional<PAlphaPorosity> porosity;  // none: non-porous (distention 1)
+  // Where the values came from, for the run record: the file read (empty when built in code) and a 64-bit
+  // hash of its bytes (16 hex digits), with which a resumed run checks that the file did not change.
+  std::string source_file;
+  std::string source_hash;
 };
 
 }  // namespace craterkit::sph

@@ -4,7 +4,9 @@
 //  - snapshots (HDF5 + XDMF) at the requested times, which the steps land on exactly, and of the final state;
 //  - the conserved-quantities log (conservation.csv) and, when particles can be ejected, ejecta.csv;
 //  - a checkpoint (atomically replaced) every N steps or wall seconds and at the end, holding the solver's
-//    state, the run record and what each observer needs to resume;
+//    state, the run record and what each observer needs to resume; the periodic ones only after steps
+//    after which the engine sorts and rebuilds its neighbour search anyway, so that checkpoints change no
+//    result (N rounded up to a multiple of the sort interval, a due wall-clock one deferred to such a step);
 //  - the progress line and the late-stage messages on stderr;
 // plus the scenario's own observers (run_observer.hpp), e.g. the impact's crater growth and measurement.
 // Per step: step -> built-in observers (late-stage log, ejecta log, conservation log, snapshots) ->

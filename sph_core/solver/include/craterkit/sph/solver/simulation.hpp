@@ -123,8 +123,17 @@ class Simulation {
 
   // Everything a checkpoint needs besides the particles.
   [[nodiscard]] SolverState state() const;
-  // Rebuild the neighbour lists at the next step (after a checkpoint, so that a restarted run, which
-  // must build them afresh, follows the same sequence of lists).
+  // True when the next step() begins with a space-filling-curve sort (every sort_interval steps), which
+  // rebuilds the neighbour search from the particles alone: nothing of the search's history then reaches the
+  // next step, so a run resumed from a checkpoint written now (which builds its search afresh) follows the
+  // same states, and the checkpoint needs no extra rebuild (run_simulation.hpp writes checkpoints only then).
+  [[nodiscard]] bool next_step_sorts() const {
+    const auto interval = parameters_.neighbours.sort_interval;
+    return interval > 0 && step_ % interval == 0;
+  }
+  // Rebuild the neighbour lists at the next step (after a checkpoint when next_step_sorts() is false, i.e.
+  // without sorting, so that a restarted run, which must build them afresh, follows the same sequence of
+  // lists).
   void force_neighbour_rebuild() { force_rebuild_ = true; }
 
  private:
