@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "craterkit/chronology/crater_counts.hpp"
 #include "craterkit/common/data_path.hpp"
@@ -103,6 +105,85 @@ TEST(CraterCounts, ShippedCountFilesParse) {
     ++files;
   }
   EXPECT_GE(files, 3);
+}
+
+// Every shipped count file is either labelled synthetic in its header or a real (published) count listed here
+// with the values its source prints, and the file must reproduce them. A new real count needs an entry: the
+// numbers it is checked against are the ones quoted in its header (paper, table or paragraph, URL read).
+namespace {
+
+struct QuotedCount {
+  double diameter_m;  // the size the source quotes N(>=D) at
+  double cumulative;  // the number of craters the source prints
+};
+
+struct RealCount {
+  const char* file;  // in data/craters/
+  double area_km2;   // the counting area the header gives
+  std::vector<QuotedCount> quoted;
+};
+
+const std::vector<RealCount>& real_counts() {
+  static const std::vector<RealCount> counts = {
+      // Hirata et al. (2020), Icarus 338, 113527, abstract: 77 craters larger than 20 m, whole surface.
+      {"ryugu_global_hirata2020.csv", 2.7, {{20.0, 77.0}}},
+      // The same, and 11 craters of at least 100 m (Space.com's report of that paper; see the header).
+      {"ryugu_global_hirata2020_20_100m.csv", 2.7, {{20.0, 77.0}, {100.0, 11.0}}},
+  };
+  return counts;
+}
+
+bool labelled_synthetic(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (int i = 0; i < 5 && std::getline(in, line); ++i) {
+    if (line.find("SYNTHETIC") != std::string::npos) return true;
+  }
+  return false;
+}
+
+// N(>=D) of a count: the cumulative count of the bin at exactly D (binned), or the craters >= D with their
+// fractions (unbinned). NaN for a binned count without a bin at D.
+double cumulative_at(const ck::CraterCounts& c, double diameter) {
+  if (c.binned()) {
+    for (const auto& b : c.bins) {
+      if (b.diameter == diameter) return b.cumulative_count;
+    }
+    return std::nan("");
+  }
+  double n = 0.0;
+  for (std::size_t i = 0; i < c.diameters.size(); ++i) {
+    if (c.diameters[i] >= diameter) n += c.fractions[i];
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST(CraterCounts, ShippedRealCountsReproduceTheNumbersTheirSourcesPrint) {
+  int real = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(craterkit::data_file("craters"))) {
+    const auto ext = entry.path().extension();
+    if (ext != ".csv" && ext != ".diam" && ext != ".scc" && ext != ".binned" && ext != ".stat") continue;
+    if (labelled_synthetic(entry.path())) continue;
+    const auto name = entry.path().filename().string();
+    const RealCount* expected = nullptr;
+    for (const auto& r : real_counts()) {
+      if (name == r.file) expected = &r;
+    }
+    ASSERT_NE(expected, nullptr) << name
+                                 << " is neither labelled SYNTHETIC nor listed in real_counts() with the "
+                                 << "values its source prints";
+    const auto c = ck::read_crater_counts(entry.path().string());
+    EXPECT_DOUBLE_EQ(c.area, expected->area_km2 * 1e6) << name;
+    for (const auto& q : expected->quoted) {
+      EXPECT_DOUBLE_EQ(cumulative_at(c, q.diameter_m), q.cumulative)
+          << name << " N(>=" << q.diameter_m << " m)";
+    }
+    ++real;
+  }
+  EXPECT_EQ(real, static_cast<int>(real_counts().size()))
+      << "a listed real count is missing from data/craters";
 }
 
 TEST(CraterCounts, ShippedSyntheticUnitIsTheSameInAllFormats) {
