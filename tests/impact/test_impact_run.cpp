@@ -315,9 +315,9 @@ TEST(ImpactRun, StoppedAfterEveryCheckpointAndResumedEqualsTheUninterruptedRun) 
 // Checkpoints change nothing: the tiny impact with checkpoints every millisecond of wall time (many
 // checkpoints, at steps that depend on the machine's load), and with checkpoints every 15 steps (not a
 // multiple of the sort interval, 20), ends with every file byte for byte equal to the same run without
-// periodic checkpoints. A checkpoint used to rebuild the neighbour lists at the next step, which changed the
-// order of the pair sums and so the last bits of the state (issue 27); checkpoints now fall only after steps
-// after which the search is rebuilt anyway (the next step sorts the particles).
+// periodic checkpoints. A checkpoint rebuilt at any other step would change the order of the pair sums and so
+// the last bits of the state; checkpoints fall only after steps after which the search is rebuilt anyway
+// (the next step sorts the particles).
 TEST(ImpactRun, CheckpointsDoNotChangeTheResult) {
   // The quarter domain to 0.3 s: the shock stage, the switch and the opening crater (to keep the test short).
   auto config = tiny_impact();

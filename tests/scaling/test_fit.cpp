@@ -259,8 +259,8 @@ TEST(Fit, JsonRoundTripGivesTheSameLaw) {
                craterkit::InputError);
 }
 
-// The fit JSON does not repeat the table: a table 8 times as long gives a JSON of the same size (issue 27:
-// 4 million rows gave 744 MB of per-row residuals). Its residual summary is that of the rows' residuals,
+// The fit JSON does not repeat the table: a table 8 times as long gives a JSON of the same size (per-row
+// residuals of 4 million rows would be hundreds of MB). Its residual summary is that of the rows' residuals,
 // which a fit keeps only when asked (FitOptions::keep_residuals) and which then do not change the fit.
 TEST(Fit, JsonSizeDoesNotGrowWithTheRowsAndSummarisesTheResiduals) {
   Grid small;
