@@ -139,8 +139,8 @@ class Simulation {
  private:
   void configure();          // shared by both constructors: laws, rate options, particle storage
   void update_neighbours();  // rebuilds the lists when the skin no longer covers the motion
-  // Block time steps: exact lists of the given particles only (NeighbourSearch::build_for).
-  void update_neighbours(std::span<const std::uint32_t> queries);
+  // Block time steps: the lists of every particle kept with the skin (NeighbourSearch::update).
+  void keep_neighbours();
   void evaluate_rates();  // neighbours, then the state and the rates of every particle
   // The state (equation of state, returns to the yield surface and the crush curve) of `state_for` and
   // the rates of `rates_for`; the lists must be current.
@@ -175,7 +175,6 @@ class Simulation {
   BlockSchedule schedule_;
   std::vector<std::uint8_t> needed_mark_;   // block steps: scratch of neighbourhood_of()
   std::vector<std::uint32_t> needed_list_;  // block steps: the particles whose state is read
-  std::vector<std::uint32_t> all_indices_;  // block steps: 0 .. active_-1
   std::uint64_t particle_updates_ = 0;
   PhaseTimers timers_;
   RateSummary rate_summary_{};
