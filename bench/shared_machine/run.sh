@@ -5,7 +5,7 @@
 #
 # Usage: bench/shared_machine/run.sh CRATERKIT CONFIG RUN_DIR MAX_STEPS [THREADS]
 #   CRATERKIT  the program
-#   CONFIG     the run's configuration (its run.max_steps is replaced by MAX_STEPS, which --resume allows)
+#   CONFIG     the run's configuration (run.max_steps set to MAX_STEPS, which --resume allows)
 #   RUN_DIR    a run folder with checkpoint.h5 (copied; not changed), or - for a new run from the start
 #   MAX_STEPS  the step to stop at (past the checkpoint's)
 # Example (the SCI run's end-of-growth checkpoint, 300 late-stage steps):
@@ -23,8 +23,12 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
-sed -E "s/^max_steps *=.*/max_steps = $max_steps/" "$config" > "$work/config.toml"
-grep -q "^max_steps = $max_steps" "$work/config.toml" || { echo "$config has no run.max_steps line" >&2; exit 2; }
+if grep -q "^max_steps *=" "$config"; then
+  sed -E "s/^max_steps *=.*/max_steps = $max_steps/" "$config" > "$work/config.toml"
+else
+  sed -E "s/^\[run\]/[run]\nmax_steps = $max_steps/" "$config" > "$work/config.toml"
+fi
+grep -q "^max_steps = $max_steps" "$work/config.toml" || { echo "$config has no [run] table" >&2; exit 2; }
 
 one_run() {  # $1: label
   rm -rf "$work/run"

@@ -312,6 +312,11 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
     int threads;
     ~RestoreThreads() { omp_set_num_threads(threads); }
   } restore_threads{summary.threads};
+  const auto wall_seconds = [&wall_start] {
+    return std::chrono::duration<double>(Clock::now() - wall_start).count();
+  };
+  share_processors(thread_share, wall_seconds(), options);  // the first window starts here
+  sim->set_between_substeps([&] { share_processors(thread_share, wall_seconds(), options); });
   const RunAttributes* resumed_from = summary.resumed ? &checkpoint_attributes : nullptr;
   bool ended = false;
   for (RunObserver* o : observers) ended = o->start(*sim, resumed_from) || ended;
@@ -327,7 +332,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
     if (files && checkpoints.write_if_due(*sim) && options.after_checkpoint)
       options.after_checkpoint(sim->step_count());
     progress.update(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
-    share_processors(thread_share, std::chrono::duration<double>(Clock::now() - wall_start).count(), options);
+    share_processors(thread_share, wall_seconds(), options);
   }
   progress.finish(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
   summary.ended_by_observer = ended;

@@ -381,6 +381,7 @@ void Simulation::advance_block(double block) {
         begin_step(p, integrator_workspace_, active);
       }
     }
+    if (between_substeps_) between_substeps_();
   }
 }
 

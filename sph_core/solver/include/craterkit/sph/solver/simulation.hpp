@@ -41,6 +41,7 @@
 // The solver knows no files, configurations or scenarios: run/run_simulation.hpp drives it with outputs
 // around the steps, and a scenario (run/standard_problems.hpp, the impact library) builds its ProblemSetup.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -135,6 +136,11 @@ class Simulation {
   // without sorting, so that a restarted run, which must build them afresh, follows the same sequence of
   // lists).
   void force_neighbour_rebuild() { force_rebuild_ = true; }
+  // Called between the substeps of a block (block time steps), from the thread that called step() and
+  // outside any parallel region: for what should not wait for the end of a block that may take seconds,
+  // such as lowering the thread count while other programs compete for the processors (run/thread_share.hpp).
+  // It must not change the particles.
+  void set_between_substeps(std::function<void()> hook) { between_substeps_ = std::move(hook); }
 
  private:
   void configure();          // shared by both constructors: laws, rate options, particle storage
@@ -185,6 +191,7 @@ class Simulation {
   std::uint64_t step_ = 0;
   std::uint64_t rebuilds_ = 0;
   bool force_rebuild_ = true;
+  std::function<void()> between_substeps_;
   bool porous_ = false;  // a material has [porosity]: the distention evolves (P-alpha)
   std::size_t active_ = 0;
   bool late_stage_active_ = false;
