@@ -72,8 +72,8 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity() +
       image_rank_.capacity() * sizeof(std::uint32_t) + slot_end_.capacity() * sizeof(std::uint64_t) +
       moved_.capacity() + moved_list_.capacity() * sizeof(std::uint32_t) +
-      moved_anchor_.capacity() * sizeof(moved_anchor_[0]) + fresh_offsets_.capacity() * sizeof(std::uint64_t) +
-      fresh_.capacity() * sizeof(std::uint32_t) + packed_.bytes();
+      moved_anchor_.capacity() * sizeof(moved_anchor_[0]) +
+      fresh_offsets_.capacity() * sizeof(std::uint64_t) + fresh_.capacity() * sizeof(std::uint32_t);
   for (const auto& t : scratch_)
     bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
   return bytes;
@@ -97,8 +97,6 @@ void NeighbourSearch::release_workspace() {
   release(moved_anchor_);
   release(fresh_offsets_);
   release(fresh_);
-  release(packed_.offsets);
-  release(packed_.neighbours);
 }
 
 void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
@@ -435,7 +433,8 @@ void NeighbourSearch::find_candidate_groups(const Box& box, double grow) {
   const std::size_t group_count = groups_.size();
   const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
     out.clear();
-    if (group_queried_[g] != 0) candidates_octree<Periodic>(g, box, out, grow);  // images alone are never queried
+    if (group_queried_[g] != 0)
+      candidates_octree<Periodic>(g, box, out, grow);  // images alone are never queried
   };
   candidate_offsets_.resize(group_count + 1);
   candidate_offsets_[0] = 0;
@@ -651,46 +650,52 @@ void NeighbourSearch::build(const NeighbourInput& input, const Box& box, Neighbo
 }
 
 // Each list sorted by entry, in a slot with room for a quarter more (moved particles add themselves to the
-// lists of their new neighbours).
+// lists of their new neighbours). The lists are collected packed into the lists' own array and then spread
+// into their slots in place, last list first (a slot starts at or after its packed list, and every list
+// before it is still where it was collected): no second copy of the lists is held.
 void NeighbourSearch::restructure(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {
   built_ = false;
   kept_ = false;
   sort_particles(input, box);
   make_octree();
   const double grow = 1.0 + options_.skin;
+  lists.ends.clear();
   if (box.any_periodic()) {
-    collect_pairs<true>(box, packed_, grow);
+    collect_pairs<true>(box, lists, grow);
   } else {
-    collect_pairs<false>(box, packed_, grow);
+    collect_pairs<false>(box, lists, grow);
   }
   box_ = box;
   built_ = true;
   ++restructures_;
   const std::size_t n = particles_;
   searches_ += n;
-  lists.offsets.resize(n + 1);
   lists.ends.resize(n);
   slot_end_.resize(n);
-  std::uint64_t offset = 0;
+  std::uint64_t slots = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint64_t count = packed_.count(i);
-    lists.offsets[i] = offset;
-    lists.ends[i] = offset + count;
-    offset += count + count / 4 + 4;
-    slot_end_[i] = offset;
+    const std::uint64_t count = lists.offsets[i + 1] - lists.offsets[i];
+    slots += count + count / 4 + 4;
+    slot_end_[i] = slots;
   }
-  lists.offsets[n] = offset;
-  if (lists.neighbours.capacity() < offset) lists.neighbours.reserve(offset + offset / 4);
-  lists.neighbours.resize(offset);
+  if (lists.neighbours.capacity() < slots) lists.neighbours.reserve(slots + slots / 8);
+  lists.neighbours.resize(slots);
+  std::uint32_t* entries = lists.neighbours.data();
+  for (std::size_t i = n; i-- > 0;) {
+    const std::uint64_t packed = lists.offsets[i];
+    const std::uint64_t count = lists.offsets[i + 1] - packed;
+    const std::uint64_t slot = i == 0 ? 0 : slot_end_[i - 1];
+    if (count > 0) std::memmove(entries + slot, entries + packed, count * sizeof(std::uint32_t));
+    lists.offsets[i + 1] = slot_end_[i];
+    lists.ends[i] = slot + count;
+  }
+  lists.offsets[0] = 0;
   unused_ = 0;
   const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t ii = 0; ii < count; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const auto from = packed_.of(i);
-    std::uint32_t* to = lists.neighbours.data() + lists.offsets[i];
-    std::copy(from.begin(), from.end(), to);
-    std::sort(to, to + from.size());
+    std::sort(entries + lists.offsets[i], entries + lists.ends[i]);
   }
   // The sorted index of every image entry (where move_anchors finds a moved particle's images).
   image_rank_.resize(box.any_mirror() ? image_start_[n] : 0);
@@ -828,7 +833,8 @@ void NeighbourSearch::search_anchor(std::uint32_t i, const Box& box, std::vector
   const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
   std::array<double, 3> half{};
   for (int a = 0; a < 3; ++a) {
-    half[std::size_t(a)] = box.periodic[a] ? 0.5 * edge[std::size_t(a)] : std::numeric_limits<double>::infinity();
+    half[std::size_t(a)] =
+        box.periodic[a] ? 0.5 * edge[std::size_t(a)] : std::numeric_limits<double>::infinity();
   }
   const double grow = 1.0 + options_.skin;
   const std::uint32_t self = rank_[i];
@@ -942,7 +948,8 @@ void NeighbourSearch::update(const NeighbourInput& input, const Box& box, Neighb
   // lists to their place in index order.
   const std::size_t moved = moved_list_.size();
   fresh_offsets_.assign(moved + 1, 0);
-  if (scratch_.size() < std::size_t(omp_get_max_threads())) scratch_.resize(std::size_t(omp_get_max_threads()));
+  if (scratch_.size() < std::size_t(omp_get_max_threads()))
+    scratch_.resize(std::size_t(omp_get_max_threads()));
   const bool periodic = box.any_periodic();
 #pragma omp parallel
   {

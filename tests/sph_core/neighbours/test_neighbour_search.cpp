@@ -243,8 +243,8 @@ TEST(NeighbourSearch, RebuildCriterionIsSufficient) {
 
 // Every pair within h_i + h_j at the current positions is in the kept lists, and each list is sorted with
 // no entry twice. Returns the number of listed entries.
-std::size_t expect_kept_lists_cover(const NeighbourLists& lists, const std::vector<std::vector<std::uint32_t>>& exact,
-                                    int round) {
+std::size_t expect_kept_lists_cover(const NeighbourLists& lists,
+                                    const std::vector<std::vector<std::uint32_t>>& exact, int round) {
   std::size_t entries = 0;
   for (std::size_t i = 0; i < exact.size(); ++i) {
     const auto got = lists.of(i);
@@ -281,7 +281,8 @@ TEST(NeighbourSearch, KeptListsHoldEveryPairWhileParticlesMove) {
     if (round == 0) {
       const auto ref = brute_force(c, box, options.skin);
       for (std::uint32_t i = 0; i < c.x.size(); ++i) {
-        ASSERT_EQ(std::vector<std::uint32_t>(lists.of(i).begin(), lists.of(i).end()), ref[i]) << "particle " << i;
+        ASSERT_EQ(std::vector<std::uint32_t>(lists.of(i).begin(), lists.of(i).end()), ref[i])
+            << "particle " << i;
       }
     }
     expect_kept_lists_cover(lists, brute_force(c, box, 0.0), round);
@@ -297,8 +298,8 @@ TEST(NeighbourSearch, KeptListsHoldEveryPairWhileParticlesMove) {
   // A moved particle whose h outgrows the build's largest h forces a restructure (the h here grow towards
   // 0.06): at most a few, not one per round.
   EXPECT_LE(search.restructures(), 3u);
-  EXPECT_GT(search.searches(), c.x.size());                   // some particles were searched again
-  EXPECT_LT(search.searches(), c.x.size() * rounds / 3);      // most lists were kept
+  EXPECT_GT(search.searches(), c.x.size());               // some particles were searched again
+  EXPECT_LT(search.searches(), c.x.size() * rounds / 3);  // most lists were kept
 }
 
 // The lists' content does not depend on the thread count, and a restructure at any call gives lists that
@@ -338,6 +339,21 @@ TEST(NeighbourSearch, KeptListsSumTheSamePairsWhateverTheirHistory) {
   }
   omp_set_num_threads(threads);
   EXPECT_EQ(kept.restructures(), 1u);
+}
+
+// Kept lists are laid out in their slots where they were collected: the search holds no second copy of
+// them (its work buffers are a fraction of the entries the lists use).
+TEST(NeighbourSearch, KeptListsAreHeldOnce) {
+  Cloud c = random_cloud(4000, 0.07, 0.08, 0.0, 13);
+  NeighbourSearchOptions options;
+  options.skin = 0.1;
+  NeighbourSearch search(options);
+  NeighbourLists lists;
+  search.update(c.input(), Box{}, lists, true);
+  const double entry_bytes = double(lists.total()) * sizeof(std::uint32_t);
+  ASSERT_GT(lists.total(), 40u * c.x.size());
+  EXPECT_LT(double(search.workspace_bytes()), 0.75 * entry_bytes);
+  EXPECT_LT(double(lists.bytes()), 1.6 * entry_bytes) << "slots with a quarter more room, plus a little";
 }
 
 TEST(NeighbourSearch, MinimumImageAndWrap) {

@@ -237,7 +237,6 @@ class NeighbourSearch {
   std::vector<std::array<double, 4>> moved_anchor_;  // their new anchors (x, y, z wrapped; h)
   std::vector<std::uint64_t> fresh_offsets_;          // their new lists, in moved_list_ order (CSR)
   std::vector<std::uint32_t> fresh_;
-  NeighbourLists packed_;  // a restructure's packed lists, before they are laid out in slots
 };
 
 }  // namespace craterkit::sph
