@@ -265,10 +265,9 @@ nlohmann::json engine_sci_against_cohesion(const std::vector<const scaling::Radi
       "\n## The SCI crater in the engine, against cohesion\n\nThe engine's craters of the SCI impact "
       "({} kg at {} m/s under g = {} m/s^2) in each table, by target (its grouping columns); observed "
       "{} +- {} m (Arakawa et al. 2020). The cohesion of the observed crater is interpolated linearly "
-      "between the "
-      "table's cohesions, never beyond them; the 1-sigma column gives the lowest and highest cohesion whose "
-      "interpolated crater lies within {:.2f}-{:.2f} m ('<=' and '>=' where that reaches the table's "
-      "smallest or largest cohesion: it may extend beyond).\n\n",
+      "between the table's cohesions, never beyond them; the 1-sigma column gives the lowest and highest "
+      "cohesion whose interpolated crater lies within {:.2f}-{:.2f} m ('<=' and '>=' where that reaches "
+      "the table's smallest or largest cohesion: it may extend beyond).\n\n",
       kSciMass, kSciVelocity, kSciGravity, kSciObservedRadius, kSciObservedSigma,
       kSciObservedRadius - kSciObservedSigma, kSciObservedRadius + kSciObservedSigma);
   nlohmann::json series_json = nlohmann::json::array();
