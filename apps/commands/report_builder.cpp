@@ -115,9 +115,16 @@ Report build_report(const std::vector<scaling::RadiiTable>& tables, const Report
       if (group.fit) {
         any_fit = true;
         const auto law = group.fit->law();
-        g["sci"] =
-            sci_under_law(law, table_fits.table->rows[group.rows.front()].target.density, kReportCohesions);
-        sci_md += sci_under_law_row(label, g["sci"]);
+        try {
+          g["sci"] =
+              sci_under_law(law, table_fits.table->rows[group.rows.front()].target.density, kReportCohesions);
+          sci_md += sci_under_law_row(label, g["sci"]);
+        } catch (const std::exception& error) {
+          // A law far from its data may have no finite answer here: say so, go on with the others.
+          g.erase("sci");
+          g["sci_not_computed"] = error.what();
+          sci_md += fmt::format("| {} | not computed: {} |\n", label, error.what());
+        }
         if (distinct_pi2(*table_fits.table, group) < 2) {
           g["rates_and_ages_not_computed"] =
               "the group's rows have one pi_2 (one impactor size, speed and gravity): its fit does not "
@@ -132,7 +139,7 @@ Report build_report(const std::vector<scaling::RadiiTable>& tables, const Report
             ages_md += fmt::format("\n### {}\n\n", label) + a;
             any_dated = true;
           } catch (const std::exception& error) {
-            // A law far from the data may need impactors outside the population's table: say so, go on.
+            // A law far from its data may need impactors outside the population's table: say so, go on.
             g.erase("rates");
             g["rates_and_ages_not_computed"] = error.what();
             not_dated += fmt::format("\n- {}: {}", label, error.what());
