@@ -2,6 +2,7 @@
 // the engine builds from it (late-stage plan, ejection radius, run attributes), the ejecta bookkeeping,
 // the resumable step logs and the end-of-growth rule.
 #include <gtest/gtest.h>
+#include <omp.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <random>
 #include <span>
 #include <sstream>
 
@@ -272,6 +274,35 @@ TEST(CraterGrowth, EndsOnlyWhenRadiusAndKineticEnergyHaveSettledOverTheWindow) {
   std::vector<CraterGrowthSample> none = {
       {1, 1, std::nan(""), 0}, {2, 2, std::nan(""), 0}, {3, 3, std::nan(""), 0}};
   EXPECT_FALSE(crater_growth_ended(none, c));
+}
+
+// The kinetic energy that decides the end of growth is the same to the last bit for any thread count: a run
+// may change its thread count on the way (run/thread_share.hpp), and its growth log and end must not change.
+TEST(CraterGrowth, MovingKineticEnergyDoesNotDependOnTheThreadCount) {
+  Particles p;
+  const std::size_t n = 50001;
+  p.resize(n);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  double plain_sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    p.mass[i] = 1.0 + 0.5 * unit(rng);
+    p.vx[i] = 3.0 * unit(rng);
+    p.vy[i] = 1e-3 * unit(rng);
+    p.vz[i] = 1e2 * unit(rng);
+    if (i % 7 == 0) p.flags[i] |= particle_fixed;
+    if ((p.flags[i] & particle_fixed) == 0)
+      plain_sum += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+  }
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const double one = moving_kinetic_energy(p);
+  for (int t : {2, 3, 4}) {
+    omp_set_num_threads(t);
+    EXPECT_EQ(moving_kinetic_energy(p), one) << t << " threads";
+  }
+  omp_set_num_threads(threads);
+  EXPECT_NEAR(one, plain_sum, 1e-12 * plain_sum);
 }
 
 TEST(CraterGrowth, ADipAndRegrowthInsideTheWindowIsNotTheEnd) {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace craterkit::impact {
 
@@ -48,16 +50,25 @@ std::optional<std::size_t> first_sample_of_ended_growth(std::span<const CraterGr
 }
 
 double moving_kinetic_energy(const Particles& p) {
-  const auto n = static_cast<std::int64_t>(p.size());
-  double sum = 0.0;
-  // Fixed static schedule and a reduction: the value may differ in the last bits with the thread count;
-  // it only feeds the termination test, never the state.
-#pragma omp parallel for schedule(static) reduction(+ : sum)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
-    sum += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+  // Summed over fixed blocks of particles, then the blocks in order: the same bits for any thread count. The
+  // value feeds the termination test, and a run may change its thread count on the way
+  // (run/thread_share.hpp).
+  constexpr std::size_t block = 4096;
+  const std::size_t n = p.size();
+  const std::size_t blocks = (n + block - 1) / block;
+  std::vector<double> block_sums(blocks, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t bb = 0; bb < static_cast<std::int64_t>(blocks); ++bb) {
+    const auto b = static_cast<std::size_t>(bb);
+    double sum = 0.0;
+    for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
+      if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
+      sum += 0.5 * p.mass[i] * (p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+    }
+    block_sums[b] = sum;
   }
+  double sum = 0.0;
+  for (const double s : block_sums) sum += s;
   return sum;
 }
 

@@ -36,18 +36,20 @@ namespace {
 
 }  // namespace
 
-int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists) const {
+int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists,
+                                   const PairSupport* support) const {
   int highest = 0;
   for (const std::uint32_t entry : lists.of(i)) {
     const std::size_t j = neighbour_index(entry);  // a mirror image has its source's level
-    if (scheduled_[j] != 0) highest = std::max(highest, int(level_[j]));
+    if (scheduled_[j] == 0 || int(level_[j]) <= highest) continue;
+    if (support == nullptr || (*support)(i, entry)) highest = int(level_[j]);
   }
   return highest - block_neighbour_levels;
 }
 
 void BlockSchedule::start(double block, std::span<const double> time_step,
                           std::span<const std::uint8_t> flags, std::size_t count,
-                          const NeighbourLists& lists) {
+                          const NeighbourLists& lists, const PairSupport* support) {
   block_ = block;
   level_.assign(count, 0);
   end_tick_.assign(count, 0);
@@ -77,7 +79,7 @@ void BlockSchedule::start(double block, std::span<const double> time_step,
       const auto i = static_cast<std::size_t>(ii);
       raised[i] = level_[i];
       if (scheduled_[i] == 0) continue;
-      const int floor = neighbour_floor(i, lists);
+      const int floor = neighbour_floor(i, lists, support);
       if (floor > int(level_[i])) {
         raised[i] = static_cast<std::uint8_t>(floor);
         changed = true;
@@ -135,7 +137,8 @@ void BlockSchedule::refine_to(int level) {
   finest_ = level;
 }
 
-void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLists& lists) {
+void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLists& lists,
+                            const PairSupport* support) {
   const auto n = static_cast<std::int64_t>(active_.size());
   std::vector<std::uint8_t> wanted(active_.size());  // per substep; small next to the pair pass
   int highest = 0, bad = -1;
@@ -144,7 +147,7 @@ void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLi
     const auto k = static_cast<std::size_t>(kk);
     const std::size_t i = active_[k];
     const int current = level_[i];
-    int want = std::max(block_level(block_, time_step[i]), neighbour_floor(i, lists));
+    int want = std::max(block_level(block_, time_step[i]), neighbour_floor(i, lists, support));
     if (want > block_finest_level_limit) bad = std::max(bad, int(i));
     want = std::min(want, block_finest_level_limit);
     int level = current;
@@ -176,6 +179,7 @@ void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLi
     for (const std::uint32_t entry : lists.of(i)) {
       const std::size_t j = neighbour_index(entry);
       if (scheduled_[j] == 0 || int(level_[j]) >= floor || end_tick_[j] <= tick_) continue;
+      if (support != nullptr && !(*support)(i, entry)) continue;
       const std::uint64_t step = std::uint64_t{1} << (finest_ - floor);
       const std::uint64_t end = (tick_ / step + 1) * step;
       if (end < end_tick_[j]) end_tick_[j] = end;

@@ -70,14 +70,17 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       (rank_.capacity() + group_of_.capacity() + candidates_.capacity()) * sizeof(std::uint32_t) +
       candidate_offsets_.capacity() * sizeof(std::uint64_t) +
       image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity() +
-      (motion_used_.capacity() + motion_budget_.capacity()) * sizeof(double) + query_mark_.capacity() +
-      group_has_query_.capacity();
+      image_rank_.capacity() * sizeof(std::uint32_t) + slot_end_.capacity() * sizeof(std::uint64_t) +
+      moved_.capacity() + moved_list_.capacity() * sizeof(std::uint32_t) +
+      moved_anchor_.capacity() * sizeof(moved_anchor_[0]) +
+      fresh_offsets_.capacity() * sizeof(std::uint64_t) + fresh_.capacity() * sizeof(std::uint32_t);
   for (const auto& t : scratch_)
     bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
   return bytes;
 }
 
 void NeighbourSearch::release_workspace() {
+  kept_ = false;  // update() then restructures
   const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
   release(keyed_);
   release(groups_);
@@ -90,7 +93,10 @@ void NeighbourSearch::release_workspace() {
   release(group_queried_);
   release(near_planes_);
   release(image_start_);
-  release(group_has_query_);
+  release(moved_list_);
+  release(moved_anchor_);
+  release(fresh_offsets_);
+  release(fresh_);
 }
 
 void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
@@ -149,6 +155,7 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
                                   ") must exceed 2 (1 + skin) (h_i + h_j) = " + std::to_string(2.0 * reach));
     }
   }
+  build_h_max_ = h_max;
   if (box.any_mirror()) add_mirror_images(in, box, h_max);  // appended after the n particles
   const std::size_t entries = xs_.size();
   const std::size_t slack = (entries - n) / 4;  // 0 without mirrors
@@ -199,6 +206,7 @@ void NeighbourSearch::add_mirror_images(const NeighbourInput& in, const Box& box
     if (mirror[1]) beyond_y = std::max(beyond_y, plane[1] - ys_[i]);
     if (mirror[2]) beyond_z = std::max(beyond_z, plane[2] - zs_[i]);
   }
+  beyond_ = {beyond_x, beyond_y, beyond_z};
   near_planes_.resize(n);
   image_start_.resize(n + 1);
   image_start_[0] = 0;
@@ -384,24 +392,21 @@ void NeighbourSearch::candidates_octree(std::size_t g, const Box& box, std::vect
 // Three steps: index the sorted particles, find the candidate groups of every group, then write each real
 // particle's list from its group's candidates.
 template <bool Periodic>
-void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, double grow,
-                                    const std::uint8_t* query_mark) {
-  index_sorted_particles(query_mark);
-  find_candidate_groups<Periodic>(box, grow, query_mark);
+void NeighbourSearch::collect_pairs(const Box& box, NeighbourLists& lists, double grow) {
+  index_sorted_particles();
+  find_candidate_groups<Periodic>(box, grow);
   const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
   constexpr double inf = std::numeric_limits<double>::infinity();
   const GatherQuery query{edge,
                           {box.periodic[0] ? 0.5 * edge[0] : inf, box.periodic[1] ? 0.5 * edge[1] : inf,
                            box.periodic[2] ? 0.5 * edge[2] : inf},
                           box.periodic,
-                          grow,
-                          query_mark};
+                          grow};
   write_lists<Periodic>(query, lists);
 }
 
-// rank_ (original index -> sorted index), group_of_ (sorted index -> group), one scratch per thread and,
-// with a query mark, group_has_query_.
-void NeighbourSearch::index_sorted_particles(const std::uint8_t* query_mark) {
+// rank_ (original index -> sorted index), group_of_ (sorted index -> group), one scratch per thread.
+void NeighbourSearch::index_sorted_particles() {
   const std::size_t n = particles_;        // lists for the real particles only
   const std::size_t entries = xs_.size();  // particles and mirror images in the tree
   rank_.resize(n);
@@ -419,25 +424,17 @@ void NeighbourSearch::index_sorted_particles(const std::uint8_t* query_mark) {
   }
   if (scratch_.size() < std::size_t(omp_get_max_threads()))
     scratch_.resize(std::size_t(omp_get_max_threads()));
-  // With a query mark only the groups holding a queried particle need candidates.
-  if (query_mark != nullptr) {
-    group_has_query_.assign(groups_.size(), 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      if (query_mark[i] != 0) group_has_query_[group_of_[rank_[i]]] = 1;
-    }
-  }
 }
 
 // Candidate groups of every group (CSR in candidate_offsets_, candidates_), counted then stored (finding
-// them twice is cheap next to the pairs). Groups of images alone, and with a query mark the groups without
-// a queried particle, get none.
+// them twice is cheap next to the pairs). Groups of images alone get none.
 template <bool Periodic>
-void NeighbourSearch::find_candidate_groups(const Box& box, double grow, const std::uint8_t* query_mark) {
+void NeighbourSearch::find_candidate_groups(const Box& box, double grow) {
   const std::size_t group_count = groups_.size();
   const auto find_candidates = [&](std::size_t g, std::vector<std::uint32_t>& out) {
     out.clear();
-    const bool queried = group_queried_[g] != 0 && (query_mark == nullptr || group_has_query_[g] != 0);
-    if (queried) candidates_octree<Periodic>(g, box, out, grow);  // images alone are never queried
+    if (group_queried_[g] != 0)
+      candidates_octree<Periodic>(g, box, out, grow);  // images alone are never queried
   };
   candidate_offsets_.resize(group_count + 1);
   candidate_offsets_[0] = 0;
@@ -469,7 +466,6 @@ void NeighbourSearch::find_candidate_groups(const Box& box, double grow, const s
 template <bool Periodic>
 std::size_t NeighbourSearch::gather_neighbours(std::uint32_t k, std::uint32_t* out, std::size_t room,
                                                const GatherQuery& query) const {
-  if (query.query_mark != nullptr && query.query_mark[original_[k]] == 0) return 0;  // (k is a real particle)
   const std::array<double, 3>& edge = query.edge;
   const std::array<double, 3>& half = query.half;
   const double grow = query.grow;
@@ -641,56 +637,158 @@ void NeighbourSearch::build(const NeighbourInput& input, const Box& box, Neighbo
   built_ = false;
   sort_particles(input, box);
   make_octree();
-  if (refitting_) reset_motion_budget();
+  kept_ = false;
   const double grow = 1.0 + options_.skin;
   if (box.any_periodic()) {
-    collect_pairs<true>(box, lists, grow, nullptr);
+    collect_pairs<true>(box, lists, grow);
   } else {
-    collect_pairs<false>(box, lists, grow, nullptr);
+    collect_pairs<false>(box, lists, grow);
   }
+  lists.ends.clear();
   box_ = box;
   built_ = true;
 }
 
-void NeighbourSearch::reset_motion_budget() {
-  const std::size_t entries = xs_.size();
-  resize_buffer(motion_used_, entries, (entries - particles_) / 4);
-  resize_buffer(motion_budget_, entries, (entries - particles_) / 4);
-  const double skin = options_.skin;
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < entries; ++k) {
-    motion_used_[k] = 0.0;
-    motion_budget_[k] = skin * hs_[k];
+// Each list sorted by entry, in a slot with room for a quarter more (moved particles add themselves to the
+// lists of their new neighbours). The lists are collected packed into the lists' own array and then spread
+// into their slots in place, last list first (a slot starts at or after its packed list, and every list
+// before it is still where it was collected): no second copy of the lists is held.
+void NeighbourSearch::restructure(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {
+  built_ = false;
+  kept_ = false;
+  sort_particles(input, box);
+  make_octree();
+  const double grow = 1.0 + options_.skin;
+  lists.ends.clear();
+  if (box.any_periodic()) {
+    collect_pairs<true>(box, lists, grow);
+  } else {
+    collect_pairs<false>(box, lists, grow);
   }
+  box_ = box;
+  built_ = true;
+  ++restructures_;
+  const std::size_t n = particles_;
+  searches_ += n;
+  lists.ends.resize(n);
+  slot_end_.resize(n);
+  std::uint64_t slots = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint64_t count = lists.offsets[i + 1] - lists.offsets[i];
+    slots += count + count / 4 + 4;
+    slot_end_[i] = slots;
+  }
+  if (lists.neighbours.capacity() < slots) lists.neighbours.reserve(slots + slots / 8);
+  lists.neighbours.resize(slots);
+  std::uint32_t* entries = lists.neighbours.data();
+  for (std::size_t i = n; i-- > 0;) {
+    const std::uint64_t packed = lists.offsets[i];
+    const std::uint64_t count = lists.offsets[i + 1] - packed;
+    const std::uint64_t slot = i == 0 ? 0 : slot_end_[i - 1];
+    if (count > 0) std::memmove(entries + slot, entries + packed, count * sizeof(std::uint32_t));
+    lists.offsets[i + 1] = slot_end_[i];
+    lists.ends[i] = slot + count;
+  }
+  lists.offsets[0] = 0;
+  unused_ = 0;
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t ii = 0; ii < count; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::sort(entries + lists.offsets[i], entries + lists.ends[i]);
+  }
+  // The sorted index of every image entry (where move_anchors finds a moved particle's images).
+  image_rank_.resize(box.any_mirror() ? image_start_[n] : 0);
+  if (box.any_mirror()) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t k = 0; k < original_.size(); ++k) {
+      const std::uint32_t entry = original_[k];
+      const unsigned bits = mirror_bits(entry);
+      if (bits == 0) continue;
+      const std::size_t i = neighbour_index(entry);
+      // Images are numbered in increasing order of their bits among the subsets of near_planes_[i].
+      unsigned m = 0;
+      for (unsigned b = 1; b < bits; ++b) m += (b & ~unsigned(near_planes_[i])) == 0 ? 1u : 0u;
+      image_rank_[image_start_[i] + m] = std::uint32_t(k);
+    }
+  }
+  kept_ = true;
 }
 
-bool NeighbourSearch::refit(const NeighbourInput& input, const Box& box) {
-  const std::size_t entries = xs_.size();
-  const MirrorPlanes planes = mirror_planes(box);
-  bool stale = false;
-#pragma omp parallel for schedule(static) reduction(|| : stale)
-  for (std::size_t k = 0; k < entries; ++k) {
-    const MirrorImage image = mirror_image(original_[k]);
-    const std::size_t i = image.index;
-    const double x = image.position(0, planes, wrap_position(box, 0, input.x[i]));
-    const double y = image.position(1, planes, wrap_position(box, 1, input.y[i]));
-    const double z = image.position(2, planes, wrap_position(box, 2, input.z[i]));
-    const double h = input.smoothing_length[i];
-    if (image.bits == 0) {
-      // The motion since the last refit, summed: an upper bound of the motion since the build (the
-      // criterion of needs_rebuild, which decides whether the images and the grouping still hold).
-      const auto d = displacement(box, x, y, z, xs_[k], ys_[k], zs_[k]);
-      motion_used_[k] += std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + std::max(0.0, h - hs_[k]);
-      if (!(motion_used_[k] <= motion_budget_[k])) stale = true;
-    }
-    xs_[k] = x;
-    ys_[k] = y;
-    zs_[k] = z;
-    hs_[k] = h;
+// Marks the particles whose motion since their anchor exceeds the skin and records their new anchors.
+// False when one of them needs a restructure: grown beyond the build's largest h (the image reach and the
+// periodic edge test assumed it), or, with mirror planes, come near a plane it has no image across, or
+// further across a plane than any particle of the build (docs in add_mirror_images).
+bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box) {
+  const std::size_t n = particles_;
+  const double skin = options_.skin;
+  moved_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t k = rank_[i];
+    const double x = wrap_position(box, 0, input.x[i]);
+    const double y = wrap_position(box, 1, input.y[i]);
+    const double z = wrap_position(box, 2, input.z[i]);
+    const auto d = displacement(box, x, y, z, xs_[k], ys_[k], zs_[k]);
+    const double moved = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double grown = std::max(0.0, input.smoothing_length[i] - hs_[k]);
+    // Written as !(<=) so that a NaN position or h is searched again (and reported by a restructure).
+    moved_[i] = !(moved + grown <= skin * hs_[k]) ? 1 : 0;
   }
-  if (stale) return false;
-    // Tight boxes of the groups, then of the nodes, children before parents (depth-first order: a node's
-    // children follow it, so visiting the nodes backwards reaches every child first).
+  moved_list_.clear();
+  moved_anchor_.clear();
+  const double grow = 1.0 + skin;
+  bool fits = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (moved_[i] == 0) continue;
+    const std::array<double, 4> anchor{wrap_position(box, 0, input.x[i]), wrap_position(box, 1, input.y[i]),
+                                       wrap_position(box, 2, input.z[i]), input.smoothing_length[i]};
+    moved_list_.push_back(std::uint32_t(i));
+    moved_anchor_.push_back(anchor);
+    if (!(anchor[3] <= build_h_max_) || !std::isfinite(anchor[0] + anchor[1] + anchor[2])) fits = false;
+    if (box.any_mirror()) {
+      const double reach = grow * (anchor[3] + build_h_max_) * (1.0 + 1e-12);
+      for (int a = 0; a < 3; ++a) {
+        if (!box.mirror[a]) continue;
+        const double above = anchor[std::size_t(a)] - box.lower[a];
+        const bool has_image = ((near_planes_[i] >> a) & 1u) != 0;
+        if (above < -beyond_[std::size_t(a)] || (!has_image && above < reach + beyond_[std::size_t(a)])) {
+          fits = false;
+        }
+      }
+    }
+  }
+  return fits;
+}
+
+// The moved particles' new anchors into the sorted copies (their images reflected as sort_particles does),
+// then the boxes of the tree around them.
+void NeighbourSearch::move_anchors(const Box& box) {
+  const MirrorPlanes planes = mirror_planes(box);
+  for (std::size_t m = 0; m < moved_list_.size(); ++m) {
+    const std::size_t i = moved_list_[m];
+    const auto& anchor = moved_anchor_[m];
+    const std::size_t k = rank_[i];
+    xs_[k] = anchor[0];
+    ys_[k] = anchor[1];
+    zs_[k] = anchor[2];
+    hs_[k] = anchor[3];
+    if (!box.any_mirror()) continue;
+    for (std::uint32_t e = image_start_[i]; e < image_start_[i + 1]; ++e) {
+      const std::size_t kk = image_rank_[e];
+      const MirrorImage image = mirror_image(original_[kk]);
+      xs_[kk] = image.position(0, planes, anchor[0]);
+      ys_[kk] = image.position(1, planes, anchor[1]);
+      zs_[kk] = image.position(2, planes, anchor[2]);
+      hs_[kk] = anchor[3];
+    }
+  }
+  refit_boxes();
+}
+
+// Tight boxes and largest h of the groups, then of the nodes, children before parents (depth-first order:
+// a node's children follow it, so visiting the nodes backwards reaches every child first).
+void NeighbourSearch::refit_boxes() {
 #pragma omp parallel for schedule(static)
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     Group& group = groups_[g];
@@ -725,34 +823,161 @@ bool NeighbourSearch::refit(const NeighbourInput& input, const Box& box) {
       node.h_max = std::max(node.h_max, nodes_[c].h_max);
     }
   }
-  return true;
 }
 
-void NeighbourSearch::build_for(const NeighbourInput& input, const Box& box,
-                                std::span<const std::uint32_t> queries, NeighbourLists& lists,
-                                bool restructure) {
-  refitting_ = true;
+// The list of particle i at the anchors: every entry whose anchor is within (1 + s)(H_i + H_j) of i's (its
+// own images included, itself not), by a walk of the tree from its root, sorted.
+template <bool Periodic>
+void NeighbourSearch::search_anchor(std::uint32_t i, const Box& box, std::vector<std::uint32_t>& out) const {
+  out.clear();
+  const std::array<double, 3> edge{box.edge(0), box.edge(1), box.edge(2)};
+  std::array<double, 3> half{};
+  for (int a = 0; a < 3; ++a) {
+    half[std::size_t(a)] =
+        box.periodic[a] ? 0.5 * edge[std::size_t(a)] : std::numeric_limits<double>::infinity();
+  }
+  const double grow = 1.0 + options_.skin;
+  const std::uint32_t self = rank_[i];
+  const double xi = xs_[self], yi = ys_[self], zi = zs_[self], hi = hs_[self];
+  for (std::size_t at = 0; at < nodes_.size();) {
+    const Node& node = nodes_[at];
+    const double gx = interval_gap<Periodic>(xi, xi, node.lower[0], node.upper[0], box.periodic[0], edge[0]);
+    const double gy = interval_gap<Periodic>(yi, yi, node.lower[1], node.upper[1], box.periodic[1], edge[1]);
+    const double gz = interval_gap<Periodic>(zi, zi, node.lower[2], node.upper[2], box.periodic[2], edge[2]);
+    const double box_reach = grow * (hi + node.h_max);
+    if (gx * gx + gy * gy + gz * gz >= box_reach * box_reach) {
+      at = node.skip;
+      continue;
+    }
+    if (node.group >= 0) {
+      const Group& g = groups_[std::size_t(node.group)];
+      for (std::uint32_t k = g.begin; k < g.end; ++k) {
+        double dx = xi - xs_[k], dy = yi - ys_[k], dz = zi - zs_[k];
+        if constexpr (Periodic) {
+          dx = dx > half[0] ? dx - edge[0] : (dx < -half[0] ? dx + edge[0] : dx);
+          dy = dy > half[1] ? dy - edge[1] : (dy < -half[1] ? dy + edge[1] : dy);
+          dz = dz > half[2] ? dz - edge[2] : (dz < -half[2] ? dz + edge[2] : dz);
+        }
+        const double reach = grow * (hi + hs_[k]);
+        if (reach * reach - (dx * dx + dy * dy + dz * dz) > 0 && k != self) out.push_back(original_[k]);
+      }
+    }
+    ++at;
+  }
+  std::sort(out.begin(), out.end());
+}
+
+// Moves list i to a new slot at the end of the array with room for `room` entries.
+void NeighbourSearch::move_slot(NeighbourLists& lists, std::size_t i, std::size_t room) {
+  const std::uint64_t count = lists.count(i);
+  const std::uint64_t capacity = std::max<std::uint64_t>(room, count) + count / 4 + 4;
+  const std::uint64_t start = lists.neighbours.size();
+  if (lists.neighbours.capacity() < start + capacity) lists.neighbours.reserve(2 * (start + capacity));
+  lists.neighbours.resize(start + capacity);
+  std::copy(lists.neighbours.begin() + std::ptrdiff_t(lists.offsets[i]),
+            lists.neighbours.begin() + std::ptrdiff_t(lists.ends[i]),
+            lists.neighbours.begin() + std::ptrdiff_t(start));
+  unused_ += slot_end_[i] - lists.offsets[i];
+  lists.offsets[i] = start;
+  lists.ends[i] = start + count;
+  slot_end_[i] = start + capacity;
+}
+
+// Adds `entry` to list j at its sorted place unless it is there.
+void NeighbourSearch::insert_entry(NeighbourLists& lists, std::size_t j, std::uint32_t entry) {
+  std::uint32_t* begin = lists.neighbours.data() + lists.offsets[j];
+  std::uint32_t* end = lists.neighbours.data() + lists.ends[j];
+  std::uint32_t* at = std::lower_bound(begin, end, entry);
+  if (at != end && *at == entry) return;
+  if (lists.ends[j] == slot_end_[j]) {
+    const auto place = at - begin;
+    move_slot(lists, j, lists.count(j) + 1);
+    begin = lists.neighbours.data() + lists.offsets[j];
+    end = lists.neighbours.data() + lists.ends[j];
+    at = begin + place;
+  }
+  std::copy_backward(at, end, end + 1);
+  *at = entry;
+  ++lists.ends[j];
+}
+
+// The moved particles' new lists into their slots, and each of them into the lists of its new neighbours
+// (the criterion is symmetric: image_A(j) in list(i) iff image_A(i) in list(j)), in index order. Entries of a
+// moved particle's old anchor stay in the others' lists: a superset is a valid list.
+void NeighbourSearch::write_moved_lists(NeighbourLists& lists) {
+  for (std::size_t m = 0; m < moved_list_.size(); ++m) {
+    const std::size_t i = moved_list_[m];
+    const std::uint64_t count = fresh_offsets_[m + 1] - fresh_offsets_[m];
+    if (lists.offsets[i] + count > slot_end_[i]) {
+      lists.ends[i] = lists.offsets[i];  // nothing to carry over
+      move_slot(lists, i, count);
+    }
+    std::copy(fresh_.begin() + std::ptrdiff_t(fresh_offsets_[m]),
+              fresh_.begin() + std::ptrdiff_t(fresh_offsets_[m + 1]),
+              lists.neighbours.begin() + std::ptrdiff_t(lists.offsets[i]));
+    lists.ends[i] = lists.offsets[i] + count;
+  }
+  for (std::size_t m = 0; m < moved_list_.size(); ++m) {
+    const auto i = moved_list_[m];
+    for (std::uint64_t e = fresh_offsets_[m]; e < fresh_offsets_[m + 1]; ++e) {
+      const std::size_t j = neighbour_index(fresh_[e]);
+      if (moved_[j] != 0) continue;  // its new list has i already
+      insert_entry(lists, j, neighbour_entry(i, mirror_bits(fresh_[e])));
+    }
+  }
+}
+
+void NeighbourSearch::update(const NeighbourInput& input, const Box& box, NeighbourLists& lists,
+                             bool restructure_now) {
   const std::size_t n = input.x.size();
-  const bool same_layout = built_ && !nodes_.empty() && n == particles_ && input.y.size() == n &&
+  const bool same_layout = kept_ && built_ && !nodes_.empty() && n == particles_ && input.y.size() == n &&
                            input.z.size() == n && input.smoothing_length.size() == n &&
                            box.periodic == box_.periodic && box.mirror == box_.mirror &&
-                           box.lower == box_.lower && box.upper == box_.upper;
-  if (restructure || !same_layout || !refit(input, box)) {
-    built_ = false;
-    sort_particles(input, box);
-    make_octree();
-    reset_motion_budget();
-    box_ = box;
-    built_ = true;
-    ++restructures_;
+                           box.lower == box_.lower && box.upper == box_.upper &&
+                           lists.particle_count() == n && lists.ends.size() == n;
+  // Abandoned slots beyond the lists' own size: lay the lists out afresh.
+  const bool wasteful = unused_ > lists.neighbours.size() / 2;
+  if (restructure_now || !same_layout || wasteful || !find_moved(input, box)) {
+    restructure(input, box, lists);
+    return;
   }
-  query_mark_.assign(n, 0);
-  for (const std::uint32_t i : queries) query_mark_[i] = 1;
-  if (box.any_periodic()) {
-    collect_pairs<true>(box, lists, 1.0, query_mark_.data());
-  } else {
-    collect_pairs<false>(box, lists, 1.0, query_mark_.data());
+  if (moved_list_.empty()) return;
+  move_anchors(box);
+  searches_ += moved_list_.size();
+  // Their new lists: each thread searches a contiguous range of them into its own buffer, then copies its
+  // lists to their place in index order.
+  const std::size_t moved = moved_list_.size();
+  fresh_offsets_.assign(moved + 1, 0);
+  if (scratch_.size() < std::size_t(omp_get_max_threads()))
+    scratch_.resize(std::size_t(omp_get_max_threads()));
+  const bool periodic = box.any_periodic();
+#pragma omp parallel
+  {
+    const auto threads = std::size_t(omp_get_num_threads());
+    const auto id = std::size_t(omp_get_thread_num());
+    ThreadScratch& t = scratch_[id];
+    const std::size_t first = moved * id / threads, last = moved * (id + 1) / threads;
+    t.found.clear();
+    for (std::size_t m = first; m < last; ++m) {
+      if (periodic) {
+        search_anchor<true>(moved_list_[m], box, t.candidates);
+      } else {
+        search_anchor<false>(moved_list_[m], box, t.candidates);
+      }
+      t.found.insert(t.found.end(), t.candidates.begin(), t.candidates.end());
+      fresh_offsets_[m + 1] = t.candidates.size();
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t m = 0; m < moved; ++m) fresh_offsets_[m + 1] += fresh_offsets_[m];
+      fresh_.resize(fresh_offsets_.back());
+    }
+    if (last > first) {
+      std::copy(t.found.begin(), t.found.end(), fresh_.begin() + std::ptrdiff_t(fresh_offsets_[first]));
+    }
   }
+  write_moved_lists(lists);
 }
 
 bool NeighbourSearch::needs_rebuild(const NeighbourInput& input) const {

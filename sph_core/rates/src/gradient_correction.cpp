@@ -93,6 +93,7 @@ void correction_impl(Particles& p, const PairList& pairs, const RateOptions& opt
   const detail::PairFrame frame = detail::pair_frame(p, options.period, options.mirror);
   const std::uint8_t* flags = p.flags.data();
   const std::uint64_t* offsets = pairs.offsets.data();
+  const std::uint64_t* ends = pairs.ends_of();
   const std::uint32_t* neighbours = pairs.neighbours.data();
 
   // firstprivate: each thread's own copy of the frame (1 % fewer instructions than through the pointer to
@@ -104,7 +105,7 @@ void correction_impl(Particles& p, const PairList& pairs, const RateOptions& opt
     const detail::PairCentre centre = detail::pair_centre(frame, i);
     // sum_j V_j (x_j - x_i) (x) grad_i W_ij = -sum_j V_j (dW/dr / r) x_ij (x) x_ij, x_ij = x_i - x_j.
     std::array<double, 6> M{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-    for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+    for (std::uint64_t k = offsets[i]; k < ends[i]; ++k) {
       const detail::PairGeometry pair = detail::pair_geometry<mirrored>(frame, centre, neighbours[k]);
       if (pair.beyond_support() || pair.coincident()) continue;
       const detail::KernelGradient grad = detail::kernel_gradient<Kernel>(pair);

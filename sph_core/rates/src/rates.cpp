@@ -356,6 +356,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   }
   const std::uint8_t* flags = p.flags.data();
   const std::uint64_t* offsets = pairs.offsets.data();
+  const std::uint64_t* ends = pairs.ends_of();
   const std::uint32_t* neighbours = pairs.neighbours.data();
 
   double* ax_out = p.acceleration_x.data();
@@ -400,7 +401,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     FluidSums sum;
     SolidSums solid_sum;
     std::uint64_t count = 0;
-    for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+    for (std::uint64_t k = offsets[i]; k < ends[i]; ++k) {
       const PairGeometry pair = detail::pair_geometry<mirrored>(frame, centre, neighbours[k]);
       if (pair.beyond_support() || pair.coincident()) continue;
       ++count;

@@ -18,6 +18,7 @@ void summation_impl(Particles& p, const PairList& pairs, const std::array<double
   const std::uint8_t* flags = p.flags.data();
   double* density = p.density.data();
   const std::uint64_t* offsets = pairs.offsets.data();
+  const std::uint64_t* ends = pairs.ends_of();
   const std::uint32_t* neighbours = pairs.neighbours.data();
 
 #pragma omp parallel for schedule(dynamic, 128)
@@ -26,7 +27,7 @@ void summation_impl(Particles& p, const PairList& pairs, const std::array<double
     if ((flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
     const detail::PairCentre centre = detail::pair_centre(frame, i);
     double sum = mass[i] * Kernel::value(0.0, centre.h);
-    for (std::uint64_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+    for (std::uint64_t k = offsets[i]; k < ends[i]; ++k) {
       const detail::PairGeometry pair = detail::pair_geometry<mirrored>(frame, centre, neighbours[k]);
       if (pair.beyond_support()) continue;  // (r = 0 counts: W has a value there)
       sum += mass[pair.j()] * Kernel::value(std::sqrt(pair.r2), pair.hbar());

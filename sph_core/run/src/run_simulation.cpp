@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <memory>
@@ -18,6 +19,7 @@
 #include "craterkit/sph/io/checkpoint.hpp"
 #include "craterkit/sph/io/solver_state.hpp"
 #include "craterkit/sph/run/progress.hpp"
+#include "craterkit/sph/run/thread_share.hpp"
 #include "output_observers.hpp"
 
 namespace craterkit::sph {
@@ -207,6 +209,16 @@ std::unique_ptr<Simulation> resume_simulation(const SimulationConfig& config, Pr
   }
 }
 
+// Fewer threads while other programs keep this run's threads waiting for a processor (thread_share.hpp).
+void share_processors(ThreadShare& share, double wall_seconds, const RunOptions& options) {
+  if (!share.due(wall_seconds)) return;
+  const auto waiting = process_waiting_seconds();
+  if (!waiting) return;
+  const ThreadShare::Decision decision = share.observe(wall_seconds, *waiting);
+  if (decision.threads) omp_set_num_threads(*decision.threads);
+  if (options.log && !decision.note.empty()) std::fprintf(stderr, "%s\n", decision.note.c_str());
+}
+
 void summarise(const Simulation& sim, RunSummary& summary) {
   const auto& p = sim.particles();
   const auto final_state = sim.conserved();
@@ -295,6 +307,16 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
     progress_options.stage_end_time = sim->problem().late_stage.transition_time;
   Progress progress(progress_options);
 
+  ThreadShare thread_share(ThreadShareOptions{.max_threads = summary.threads});
+  struct RestoreThreads {  // the next run in this process starts with the count this one was given
+    int threads;
+    ~RestoreThreads() { omp_set_num_threads(threads); }
+  } restore_threads{summary.threads};
+  const auto wall_seconds = [&wall_start] {
+    return std::chrono::duration<double>(Clock::now() - wall_start).count();
+  };
+  share_processors(thread_share, wall_seconds(), options);  // the first window starts here
+  sim->set_between_substeps([&] { share_processors(thread_share, wall_seconds(), options); });
   const RunAttributes* resumed_from = summary.resumed ? &checkpoint_attributes : nullptr;
   bool ended = false;
   for (RunObserver* o : observers) ended = o->start(*sim, resumed_from) || ended;
@@ -310,6 +332,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
     if (files && checkpoints.write_if_due(*sim) && options.after_checkpoint)
       options.after_checkpoint(sim->step_count());
     progress.update(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
+    share_processors(thread_share, wall_seconds(), options);
   }
   progress.finish(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
   summary.ended_by_observer = ended;

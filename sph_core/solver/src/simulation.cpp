@@ -12,6 +12,7 @@
 #include "craterkit/common/format_number.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/neighbours/mirror_reflection.hpp"
+#include "craterkit/sph/neighbours/pair_support.hpp"
 #include "craterkit/sph/particles/space_filling_curve.hpp"
 #include "craterkit/sph/physics/deviatoric_stress.hpp"
 #include "craterkit/sph/physics/late_stage.hpp"
@@ -145,7 +146,7 @@ Simulation::Simulation(SolverParameters parameters, ProblemSetup problem)
     // pass before, gradient_correction.hpp).
     update_neighbours();
     update_equation_of_state();
-    compute_correction_matrices(problem_.particles, PairList{lists_.offsets, lists_.neighbours},
+    compute_correction_matrices(problem_.particles, PairList{lists_.offsets, lists_.neighbours, lists_.ends},
                                 rate_options_, rate_workspace_,
                                 ParticleSelection::all(problem_.particles.size()));
   }
@@ -213,7 +214,7 @@ void Simulation::update_neighbours() {
   }
 }
 
-void Simulation::update_neighbours(std::span<const std::uint32_t> queries) {
+void Simulation::keep_neighbours() {
   auto& p = problem_.particles;
   auto scope = timers_.measure("neighbours");
   const NeighbourInput input{std::span<const double>(p.x).first(active_),
@@ -221,7 +222,7 @@ void Simulation::update_neighbours(std::span<const std::uint32_t> queries) {
                              std::span<const double>(p.z).first(active_),
                              std::span<const double>(p.smoothing_length).first(active_)};
   const std::uint64_t before = search_.restructures();
-  search_.build_for(input, problem_.box, queries, lists_, force_rebuild_);
+  search_.update(input, problem_.box, lists_, force_rebuild_);
   rebuilds_ += search_.restructures() - before;
   force_rebuild_ = false;
 }
@@ -236,13 +237,13 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
   auto& p = problem_.particles;
   if (parameters_.density == DensityMethod::summation) {
     auto scope = timers_.measure("density");
-    compute_summation_density(p, PairList{lists_.offsets, lists_.neighbours}, parameters_.kernel,
+    compute_summation_density(p, PairList{lists_.offsets, lists_.neighbours, lists_.ends}, parameters_.kernel,
                               rate_options_.period, rate_options_.mirror);
   }
   update_equation_of_state(state_for);
   {
     auto scope = timers_.measure("rates");
-    rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours}, rate_options_,
+    rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours, lists_.ends}, rate_options_,
                                   rate_workspace_, rates_for, rate_options_.solid ? &gradients_ : nullptr);
     if (rate_options_.solid) compute_stress_rates(p, gradients_, shear_modulus_, rates_for);
     if (porous_) compute_distention_rates(p, problem_.materials, rates_for);
@@ -275,12 +276,16 @@ ParticleSelection Simulation::neighbourhood_of(std::span<const std::uint32_t> pa
   needed_mark_.assign(n, 0);
   const auto count = static_cast<std::int64_t>(particles.size());
   std::uint8_t* mark = needed_mark_.data();
+  const PairSupport support = pair_support(problem_.particles, problem_.box);
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::int64_t kk = 0; kk < count; ++kk) {
     const std::size_t i = particles[static_cast<std::size_t>(kk)];
     std::atomic_ref<std::uint8_t>(mark[i]).store(1, std::memory_order_relaxed);
     for (const std::uint32_t entry : lists_.of(i)) {
-      std::atomic_ref<std::uint8_t>(mark[neighbour_index(entry)]).store(1, std::memory_order_relaxed);
+      const std::size_t j = neighbour_index(entry);
+      if (std::atomic_ref<std::uint8_t>(mark[j]).load(std::memory_order_relaxed) == 0 && support(i, entry)) {
+        std::atomic_ref<std::uint8_t>(mark[j]).store(1, std::memory_order_relaxed);
+      }
     }
   }
   needed_list_.clear();
@@ -322,15 +327,14 @@ void Simulation::advance_block(double block) {
     auto scope = timers_.measure("integration");
     begin_step(p, integrator_workspace_, all);
   }
-  // Lists of every particle at the start (the neighbour rule of the schedule), then of the active ones at
-  // each substep (NeighbourSearch::build_for: the octree refit, not rebuilt).
-  all_indices_.resize(active_);
-  for (std::size_t i = 0; i < active_; ++i) all_indices_[i] = static_cast<std::uint32_t>(i);
-  update_neighbours(all_indices_);
+  // Lists of every particle, kept from substep to substep (NeighbourSearch::update: only the particles that
+  // moved beyond the skin are searched again) and read through the support test.
+  keep_neighbours();
   {
     auto scope = timers_.measure("schedule");
+    const PairSupport support = pair_support(p, problem_.box);
     try {
-      schedule_.start(block, p.time_step, p.flags, active_, lists_);
+      schedule_.start(block, p.time_step, p.flags, active_, lists_, &support);
     } catch (const TimeStepCollapse& collapse) {
       throw_collapse(collapse, p, rate_workspace_.signal_time, time_step_parameters(), time_);
     }
@@ -346,7 +350,7 @@ void Simulation::advance_block(double block) {
       auto scope = timers_.measure("integration");
       drift(p, dt, problem_.box, parameters_.smoothing);
     }
-    update_neighbours(schedule_.active());
+    keep_neighbours();
     const auto active = ParticleSelection::listed(schedule_.active());
     ParticleSelection needed = all;
     {
@@ -369,13 +373,15 @@ void Simulation::advance_block(double block) {
       (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
       if (!schedule_.finished()) {
         try {
-          schedule_.relevel(p.time_step, lists_);
+          const PairSupport support = pair_support(p, problem_.box);
+          schedule_.relevel(p.time_step, lists_, &support);
         } catch (const TimeStepCollapse& collapse) {
           throw_collapse(collapse, p, rate_workspace_.signal_time, parameters, time_ + schedule_.elapsed());
         }
         begin_step(p, integrator_workspace_, active);
       }
     }
+    if (between_substeps_) between_substeps_();
   }
 }
 

@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <functional>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -283,6 +284,40 @@ TEST(MirrorSearch, EntryEncoding) {
   const MirrorImage plain = mirror_image<false>(123u);
   EXPECT_EQ(plain.index, 123u);
   EXPECT_EQ(plain.position(0, planes, 1.0), 1.0);
+}
+
+// Kept lists (update(), block time steps) with two mirror planes: while particles move about near the
+// planes (never across), every pair and image pair within h_i + h_j stays listed, each list sorted.
+TEST(MirrorNeighbourSearch, KeptListsHoldEveryImagePairWhileParticlesMove) {
+  Cloud c = random_cloud(1500, {0.0, 0.0, 0.0}, 0.03, 0.06, 17);
+  const Box box = mirror_box({0.0, 0.0, 0.0}, {true, true, false});
+  NeighbourSearchOptions options;
+  options.skin = 0.2;
+  NeighbourSearch search(options);
+  NeighbourLists lists;
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t image_pairs = 0;
+  for (int round = 0; round < 10; ++round) {
+    search.update(c.input(), box, lists, round == 0);
+    const auto exact = brute_force(c, box, 0.0);
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      const auto got = lists.of(i);
+      ASSERT_TRUE(std::adjacent_find(got.begin(), got.end(), std::greater_equal<>()) == got.end()) << i;
+      for (const std::uint32_t e : exact[i]) {
+        ASSERT_TRUE(std::binary_search(got.begin(), got.end(), e))
+            << "round " << round << ": entry " << e << " of particle " << i << " missing";
+        image_pairs += mirror_bits(e) != 0 ? 1 : 0;
+      }
+    }
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      c.x[i] = std::max(0.0, c.x[i] + 0.006 * unit(rng));
+      c.y[i] = std::max(0.0, c.y[i] + 0.006 * unit(rng));
+      c.z[i] += 0.006 * unit(rng);
+    }
+  }
+  EXPECT_GT(image_pairs, 1000u);
+  EXPECT_GT(search.searches(), c.x.size());
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -240,10 +241,31 @@ TEST(NeighbourSearch, RebuildCriterionIsSufficient) {
   EXPECT_TRUE(search.needs_rebuild(Cloud{}.input()));  // particle count changed
 }
 
-// Block time steps: build_for lists only the queried particles, exactly (no skin), at the current
-// positions, through a refit octree while the motion since its build is within the skin, and through a new
-// one after; the lists equal brute force for the queried particles and are empty for the others.
-TEST(NeighbourSearch, ListsForQueriesThroughRefitsEqualBruteForce) {
+// Every pair within h_i + h_j at the current positions is in the kept lists, and each list is sorted with
+// no entry twice. Returns the number of listed entries.
+std::size_t expect_kept_lists_cover(const NeighbourLists& lists,
+                                    const std::vector<std::vector<std::uint32_t>>& exact, int round) {
+  std::size_t entries = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    const auto got = lists.of(i);
+    entries += got.size();
+    EXPECT_TRUE(std::adjacent_find(got.begin(), got.end(), std::greater_equal<>()) == got.end())
+        << "round " << round << ": list " << i << " not strictly ascending";
+    for (const std::uint32_t j : exact[i]) {
+      if (!std::binary_search(got.begin(), got.end(), j)) {
+        ADD_FAILURE() << "round " << round << ": pair (" << i << ", " << j << ") within h_i + h_j is missing";
+        return entries;
+      }
+    }
+  }
+  return entries;
+}
+
+// Block time steps: update() keeps the lists of every particle from call to call, searching again only the
+// particles that moved beyond the skin since their last search; right after a restructure the lists are
+// exactly the pairs within (1 + s)(h_i + h_j), and after any number of moves they still hold every pair
+// within h_i + h_j, sorted, while far fewer lists are searched than a search per call would.
+TEST(NeighbourSearch, KeptListsHoldEveryPairWhileParticlesMove) {
   Cloud c = random_cloud(3000, 0.02, 0.06, 0.01, 21);
   const Box box{};  // open
   NeighbourSearchOptions options;
@@ -252,38 +274,86 @@ TEST(NeighbourSearch, ListsForQueriesThroughRefitsEqualBruteForce) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   NeighbourLists lists;
-  std::uint64_t restructures_seen = 0;
-  for (int round = 0; round < 12; ++round) {
-    std::vector<std::uint32_t> queries;
-    for (std::uint32_t i = 0; i < c.x.size(); ++i) {
-      if ((i * 7 + std::uint32_t(round)) % 5 == 0) queries.push_back(i);
-    }
-    search.build_for(c.input(), box, queries, lists, round == 0);
-    const auto ref = brute_force(c, box, 0.0);
+  constexpr int rounds = 12;
+  for (int round = 0; round < rounds; ++round) {
+    search.update(c.input(), box, lists, round == 0);
     ASSERT_EQ(lists.particle_count(), c.x.size());
-    std::size_t at = 0;
-    for (std::uint32_t i = 0; i < c.x.size(); ++i) {
-      const bool queried = at < queries.size() && queries[at] == i;
-      if (queried) ++at;
-      auto got = std::vector<std::uint32_t>(lists.of(i).begin(), lists.of(i).end());
-      std::sort(got.begin(), got.end());
-      if (queried) {
-        ASSERT_EQ(got, ref[i]) << "round " << round << ", particle " << i;
-      } else {
-        ASSERT_TRUE(got.empty()) << "round " << round << ", particle " << i;
+    if (round == 0) {
+      const auto ref = brute_force(c, box, options.skin);
+      for (std::uint32_t i = 0; i < c.x.size(); ++i) {
+        ASSERT_EQ(std::vector<std::uint32_t>(lists.of(i).begin(), lists.of(i).end()), ref[i])
+            << "particle " << i;
       }
     }
-    restructures_seen = search.restructures();
-    // Motion of a few per cent of h per round and growing h: some rounds refit, a later one rebuilds.
+    expect_kept_lists_cover(lists, brute_force(c, box, 0.0), round);
+    // Motion of a few per cent of h per round, a few particles thrown far, h growing and shrinking.
     for (std::size_t i = 0; i < c.x.size(); ++i) {
       c.x[i] += 0.004 * unit(rng);
       c.y[i] += 0.004 * unit(rng);
       c.z[i] += 0.004 * unit(rng);
-      c.h[i] *= 1.0 + 0.01 * (unit(rng) + 1.0);
+      c.h[i] = std::clamp(c.h[i] * (1.0 + 0.01 * unit(rng)), 0.02, 0.06);
+      if (i % 997 == 0) c.x[i] += 0.3 * unit(rng);
     }
   }
-  EXPECT_GT(restructures_seen, 1u);   // the skin was used up at some point
-  EXPECT_LT(restructures_seen, 12u);  // and the refits did the other rounds
+  // A moved particle whose h outgrows the build's largest h forces a restructure (the h here grow towards
+  // 0.06): at most a few, not one per round.
+  EXPECT_LE(search.restructures(), 3u);
+  EXPECT_GT(search.searches(), c.x.size());               // some particles were searched again
+  EXPECT_LT(search.searches(), c.x.size() * rounds / 3);  // most lists were kept
+}
+
+// The lists' content does not depend on the thread count, and a restructure at any call gives lists that
+// hold the same pairs within h_i + h_j in the same order (what the pair loops sum).
+TEST(NeighbourSearch, KeptListsSumTheSamePairsWhateverTheirHistory) {
+  Cloud c = random_cloud(2000, 0.03, 0.06, 0.0, 8);
+  const Box box{{0, 0, 0}, {1, 1, 1}, {true, false, true}};
+  NeighbourSearchOptions options;
+  options.skin = 0.2;
+  NeighbourSearch kept(options), fresh(options);
+  NeighbourLists kept_lists, fresh_lists;
+  const int threads = omp_get_max_threads();
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int round = 0; round < 8; ++round) {
+    omp_set_num_threads(1 + round % 2);
+    kept.update(c.input(), box, kept_lists, round == 0);
+    fresh.update(c.input(), box, fresh_lists, true);
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      const auto within = [&](const NeighbourLists& lists) {
+        std::vector<std::uint32_t> out;
+        for (const std::uint32_t j : lists.of(i)) {
+          double d[3] = {c.x[i] - c.x[j], c.y[i] - c.y[j], c.z[i] - c.z[j]};
+          for (int a = 0; a < 3; ++a) d[a] = minimum_image(box, a, d[a]);
+          const double reach = c.h[i] + c.h[j];
+          if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < reach * reach) out.push_back(j);
+        }
+        return out;
+      };
+      ASSERT_EQ(within(kept_lists), within(fresh_lists)) << "round " << round << ", particle " << i;
+    }
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      c.x[i] = wrap_position(box, 0, c.x[i] + 0.005 * unit(rng));
+      c.y[i] += 0.005 * unit(rng);
+      c.z[i] = wrap_position(box, 2, c.z[i] + 0.005 * unit(rng));
+    }
+  }
+  omp_set_num_threads(threads);
+  EXPECT_EQ(kept.restructures(), 1u);
+}
+
+// Kept lists are laid out in their slots where they were collected: the search holds no second copy of
+// them (its work buffers are a fraction of the entries the lists use).
+TEST(NeighbourSearch, KeptListsAreHeldOnce) {
+  Cloud c = random_cloud(4000, 0.07, 0.08, 0.0, 13);
+  NeighbourSearchOptions options;
+  options.skin = 0.1;
+  NeighbourSearch search(options);
+  NeighbourLists lists;
+  search.update(c.input(), Box{}, lists, true);
+  const double entry_bytes = double(lists.total()) * sizeof(std::uint32_t);
+  ASSERT_GT(lists.total(), 40u * c.x.size());
+  EXPECT_LT(double(search.workspace_bytes()), 0.75 * entry_bytes);
+  EXPECT_LT(double(lists.bytes()), 1.6 * entry_bytes) << "slots with a quarter more room, plus a little";
 }
 
 TEST(NeighbourSearch, MinimumImageAndWrap) {

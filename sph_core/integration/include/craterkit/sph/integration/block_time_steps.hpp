@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/neighbours/pair_support.hpp"
 #include "craterkit/sph/particles/particles.hpp"
 
 namespace craterkit::sph {
@@ -58,9 +59,10 @@ class BlockSchedule {
   // Starts a block of length `block` for the moving (neither fixed nor ejected) particles among the
   // first `count` (the lists' particles; the rest, ejected, never take part) from their own steps,
   // then raises levels until no particle is more than two levels coarser than a neighbour. Throws
-  // TimeStepCollapse if a level above block_finest_level_limit is needed (so does relevel()).
+  // TimeStepCollapse if a level above block_finest_level_limit is needed (so does relevel()). A neighbour is
+  // a list entry within the kernel support (`support`, pair_support.hpp), or any entry without it.
   void start(double block, std::span<const double> time_step, std::span<const std::uint8_t> flags,
-             std::size_t count, const NeighbourLists& lists);
+             std::size_t count, const NeighbourLists& lists, const PairSupport* support = nullptr);
 
   [[nodiscard]] bool finished() const { return tick_ == ticks_per_block(); }
   // Advances to the next tick at which some step ends; returns the time from the previous tick, s.
@@ -74,7 +76,8 @@ class BlockSchedule {
   [[nodiscard]] std::span<const double> active_steps() const { return active_steps_; }
   // New levels for the active particles, whose steps just ended, from their new limits; they start
   // their next step at the current tick.
-  void relevel(std::span<const double> time_step, const NeighbourLists& lists);
+  void relevel(std::span<const double> time_step, const NeighbourLists& lists,
+               const PairSupport* support = nullptr);
 
   [[nodiscard]] double block() const { return block_; }
   // Time from the start of the block to the current tick, s.
@@ -88,7 +91,8 @@ class BlockSchedule {
 
  private:
   void refine_to(int level);  // rescales the ticks so that `level` exists
-  [[nodiscard]] int neighbour_floor(std::size_t i, const NeighbourLists& lists) const;
+  [[nodiscard]] int neighbour_floor(std::size_t i, const NeighbourLists& lists,
+                                    const PairSupport* support) const;
 
   double block_ = 0.0;
   int finest_ = 0;

@@ -11,7 +11,8 @@
 // than half lists because the engine's pair loops gather into particle i only: no atomics, no colouring, and
 // a sum order that does not depend on the thread count (bitwise-reproducible runs and restarts). Half lists
 // would halve the list memory (about 120 instead of 240 bytes per particle at 60 neighbours) but need
-// scattered writes to j. Within list(i) neighbours are ordered along the space-filling curve.
+// scattered writes to j. Within list(i) neighbours are ordered along the space-filling curve (build()) or by
+// entry (update()).
 //
 // Periodic axes use the minimum-image convention; the box edge along a periodic axis must exceed
 // 2 (1 + s)(h_i + h_j) for every pair, so that no pair interacts through two images.
@@ -42,23 +43,34 @@
 
 namespace craterkit::sph {
 
-// CSR neighbour lists: the neighbours of i are neighbours[offsets[i] .. offsets[i+1]).
+// Neighbour lists: the neighbours of i are neighbours[offsets[i] .. end(i)). Packed (CSR, as build() writes
+// them): `ends` is empty and list i ends where list i + 1 starts. Kept (update() for block time steps): each
+// list has a slot with room to grow, list i ends at ends[i], and a slot may have moved to the end of the
+// array, so offsets[i + 1] says nothing about list i.
 struct NeighbourLists {
   std::vector<std::uint64_t> offsets;     // size n + 1
+  std::vector<std::uint64_t> ends;        // empty (packed) or size n
   std::vector<std::uint32_t> neighbours;  // entries: particle index | mirror-image bits (mirror_image.hpp)
 
   [[nodiscard]] std::size_t particle_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  [[nodiscard]] std::uint64_t end(std::size_t i) const { return ends.empty() ? offsets[i + 1] : ends[i]; }
   [[nodiscard]] std::span<const std::uint32_t> of(std::size_t i) const {
-    return {neighbours.data() + offsets[i], neighbours.data() + offsets[i + 1]};
+    return {neighbours.data() + offsets[i], neighbours.data() + end(i)};
   }
-  [[nodiscard]] std::size_t count(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
-  [[nodiscard]] std::size_t total() const { return offsets.empty() ? 0 : offsets.back(); }
+  [[nodiscard]] std::size_t count(std::size_t i) const { return end(i) - offsets[i]; }
+  [[nodiscard]] std::size_t total() const {
+    if (ends.empty()) return offsets.empty() ? 0 : offsets.back();
+    std::size_t sum = 0;
+    for (std::size_t i = 0; i < ends.size(); ++i) sum += count(i);
+    return sum;
+  }
   [[nodiscard]] double mean_neighbours() const {
     return particle_count() ? double(total()) / double(particle_count()) : 0.0;
   }
   // Bytes held (capacity, as allocated).
   [[nodiscard]] std::size_t bytes() const {
-    return offsets.capacity() * sizeof(std::uint64_t) + neighbours.capacity() * sizeof(std::uint32_t);
+    return (offsets.capacity() + ends.capacity()) * sizeof(std::uint64_t) +
+           neighbours.capacity() * sizeof(std::uint32_t);
   }
 };
 
@@ -102,17 +114,22 @@ class NeighbourSearch {
   // at least (1 + s)(h_i + h_j) from every particle i, as any unlisted pair (see add_mirror_images).
   [[nodiscard]] bool needs_rebuild(const NeighbourInput& input) const;
 
-  // Block time steps (block_time_steps.hpp): lists for the `queries` only, at the current positions and
-  // exact (r < h_i + h_j, no skin); every other particle's list is empty. The octree of the last build is
-  // kept and refit (its boxes tightened to the current positions and h) as long as no particle has moved
-  // more than the skin s h since that build (the criterion of needs_rebuild, summed over the refits;
-  // mirror images and the grouping rest on it), otherwise, or with `restructure` (after the particles were
-  // reordered), it is built afresh. So a call costs a pass over all particles plus the queried particles'
-  // pairs, not a whole build. Needs s > 0 to ever refit. Throws as build().
-  void build_for(const NeighbourInput& input, const Box& box, std::span<const std::uint32_t> queries,
-                 NeighbourLists& lists, bool restructure);
-  // Octree builds by build_for (the refits in between are the saving).
+  // Block time steps (block_time_steps.hpp): lists of every particle with the skin, kept from call to call.
+  // Each particle has an anchor, its position and h when its list was last searched; the lists hold every
+  // pair whose anchors are within (1 + s)(H_i + H_j). A call searches afresh only the particles that moved
+  // more than s H since their anchor (|x - X| + max(0, h - H) > s H; then no pair can have come within
+  // h_i + h_j unlisted, by the triangle inequality), re-anchors them, and adds each to the lists of its new
+  // neighbours. The octree is built over the anchors and refit when some move; it is rebuilt afresh (all
+  // particles re-anchored) with `restructure`, when the count or box changed, when a re-anchored particle
+  // would need a mirror image the build did not make or has outgrown the build's largest h, and when moved
+  // slots have left too much of the array unused. Each list is sorted by entry, so that a pair loop that
+  // skips the pairs beyond h_i + h_j sums the same terms in the same order whatever superset it was given:
+  // results do not depend on when the lists were searched (restarts, checkpoints). Throws as build().
+  void update(const NeighbourInput& input, const Box& box, NeighbourLists& lists, bool restructure);
+  // Octree builds by update() (each re-anchors every particle).
   [[nodiscard]] std::uint64_t restructures() const { return restructures_; }
+  // Particle lists searched by update() (all particles at a restructure, the moved ones otherwise).
+  [[nodiscard]] std::uint64_t searches() const { return searches_; }
 
   // Frees the buffers only a build needs (sort keys, tree, candidates, per-thread scratch: about 40 bytes
   // per particle), keeping what needs_rebuild() reads (sorted copies of positions and h). For runs short of
@@ -140,20 +157,18 @@ class NeighbourSearch {
   void add_mirror_images(const NeighbourInput& input, const Box& box, double h_max);
   void make_octree();
   void split_at_median(std::uint32_t begin, std::uint32_t end);
-  // Lists of every real particle (query_mark null) or of the marked ones (by original index), with pairs
-  // r < grow (h_i + h_j), in three steps: index_sorted_particles (rank_, group_of_, group_has_query_),
-  // find_candidate_groups (candidate_offsets_, candidates_), write_lists.
+  // Lists of every real particle with pairs r < grow (h_i + h_j), in three steps: index_sorted_particles
+  // (rank_, group_of_), find_candidate_groups (candidate_offsets_, candidates_), write_lists.
   template <bool Periodic>
-  void collect_pairs(const Box& box, NeighbourLists& lists, double grow, const std::uint8_t* query_mark);
-  void index_sorted_particles(const std::uint8_t* query_mark);
+  void collect_pairs(const Box& box, NeighbourLists& lists, double grow);
+  void index_sorted_particles();
   template <bool Periodic>
-  void find_candidate_groups(const Box& box, double grow, const std::uint8_t* query_mark);
+  void find_candidate_groups(const Box& box, double grow);
   // What the list of one particle needs besides the tree and the candidate groups.
   struct GatherQuery {
     std::array<double, 3> edge, half;  // box edges; half of them on periodic axes, +infinity on the others
     std::array<bool, 3> periodic;
     double grow;
-    const std::uint8_t* query_mark;
   };
   template <bool Periodic>
   void write_lists(const GatherQuery& query, NeighbourLists& lists);
@@ -170,9 +185,17 @@ class NeighbourSearch {
   void join_regions(std::size_t threads, bool overflowed, NeighbourLists& lists);
   template <bool Periodic>
   void candidates_octree(std::size_t g, const Box& box, std::vector<std::uint32_t>& out, double grow) const;
-  // build_for(): new positions into the tree; false when the motion since the build exceeds the skin.
-  bool refit(const NeighbourInput& input, const Box& box);
-  void reset_motion_budget();
+  // update()'s parts: a whole new build into slotted, sorted lists; the particles that moved beyond their
+  // anchor's skin (false when one needs a restructure); their new anchors into the tree; one point query.
+  void restructure(const NeighbourInput& input, const Box& box, NeighbourLists& lists);
+  bool find_moved(const NeighbourInput& input, const Box& box);
+  void move_anchors(const Box& box);
+  void refit_boxes();
+  template <bool Periodic>
+  void search_anchor(std::uint32_t i, const Box& box, std::vector<std::uint32_t>& out) const;
+  void write_moved_lists(NeighbourLists& lists);
+  void insert_entry(NeighbourLists& lists, std::size_t j, std::uint32_t entry);
+  void move_slot(NeighbourLists& lists, std::size_t i, std::size_t room);
 
   NeighbourSearchOptions options_;
   bool built_ = false;
@@ -201,12 +224,19 @@ class NeighbourSearch {
     std::size_t overflow_from = 0;  // first particle whose list went to `found`
   };
   std::vector<ThreadScratch> scratch_;
-  // build_for() only: the motion of each sorted entry since the build, its allowance s h, the queried
-  // particles and the groups that hold one.
-  bool refitting_ = false;
-  std::uint64_t restructures_ = 0;
-  std::vector<double> motion_used_, motion_budget_;
-  std::vector<std::uint8_t> query_mark_, group_has_query_;
+  // update() only.
+  bool kept_ = false;                  // the lists are update()'s (slotted, anchored)
+  double build_h_max_ = 0.0;           // the largest h of the build (image reach, periodic edge)
+  std::array<double, 3> beyond_{};     // how far the deepest particle of the build had crossed each plane
+  std::uint64_t restructures_ = 0, searches_ = 0;
+  std::vector<std::uint32_t> image_rank_;  // sorted index of each image entry (image_start_ order)
+  std::vector<std::uint64_t> slot_end_;    // end of each particle's slot in NeighbourLists::neighbours
+  std::uint64_t unused_ = 0;               // entries of abandoned slots (moved to the end)
+  std::vector<std::uint8_t> moved_;        // per particle: re-anchored in this call
+  std::vector<std::uint32_t> moved_list_;  // their indices, ascending
+  std::vector<std::array<double, 4>> moved_anchor_;  // their new anchors (x, y, z wrapped; h)
+  std::vector<std::uint64_t> fresh_offsets_;          // their new lists, in moved_list_ order (CSR)
+  std::vector<std::uint32_t> fresh_;
 };
 
 }  // namespace craterkit::sph

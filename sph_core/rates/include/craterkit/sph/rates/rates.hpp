@@ -110,12 +110,17 @@ struct RateOptions {
   ArtificialStress artificial_stress{};
 };
 
-// CSR neighbour lists: the neighbours of i are neighbours[offsets[i] .. offsets[i+1]). Entries may
-// include pairs slightly beyond h_i + h_j (a search skin); the pair body drops them. An entry is a particle
-// index with mirror-image bits (mirror_image.hpp; zero without mirror planes).
+// Neighbour lists (NeighbourLists): the neighbours of i are neighbours[offsets[i] .. end), where end is
+// offsets[i+1] (packed lists, `ends` empty) or ends[i] (kept lists). Entries may include pairs beyond
+// h_i + h_j (a search skin); the pair body drops them, so lists sorted by entry give the same sums whatever
+// superset they hold. An entry is a particle index with mirror-image bits (mirror_image.hpp; zero without
+// mirror planes).
 struct PairList {
   std::span<const std::uint64_t> offsets;
   std::span<const std::uint32_t> neighbours;
+  std::span<const std::uint64_t> ends = {};
+  // Where list i ends: ends[i] reads ends_of()[i].
+  [[nodiscard]] const std::uint64_t* ends_of() const { return ends.empty() ? offsets.data() + 1 : ends.data(); }
 };
 
 // Corrected velocity gradient (grad v)_ab = dv_a/dx_b per particle, row-major (xx, xy, xz, yx, ...), for

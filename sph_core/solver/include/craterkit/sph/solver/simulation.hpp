@@ -41,6 +41,7 @@
 // The solver knows no files, configurations or scenarios: run/run_simulation.hpp drives it with outputs
 // around the steps, and a scenario (run/standard_problems.hpp, the impact library) builds its ProblemSetup.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -135,12 +136,17 @@ class Simulation {
   // without sorting, so that a restarted run, which must build them afresh, follows the same sequence of
   // lists).
   void force_neighbour_rebuild() { force_rebuild_ = true; }
+  // Called between the substeps of a block (block time steps), from the thread that called step() and
+  // outside any parallel region: for what should not wait for the end of a block that may take seconds,
+  // such as lowering the thread count while other programs compete for the processors (run/thread_share.hpp).
+  // It must not change the particles.
+  void set_between_substeps(std::function<void()> hook) { between_substeps_ = std::move(hook); }
 
  private:
   void configure();          // shared by both constructors: laws, rate options, particle storage
   void update_neighbours();  // rebuilds the lists when the skin no longer covers the motion
-  // Block time steps: exact lists of the given particles only (NeighbourSearch::build_for).
-  void update_neighbours(std::span<const std::uint32_t> queries);
+  // Block time steps: the lists of every particle kept with the skin (NeighbourSearch::update).
+  void keep_neighbours();
   void evaluate_rates();  // neighbours, then the state and the rates of every particle
   // The state (equation of state, returns to the yield surface and the crush curve) of `state_for` and
   // the rates of `rates_for`; the lists must be current.
@@ -175,7 +181,6 @@ class Simulation {
   BlockSchedule schedule_;
   std::vector<std::uint8_t> needed_mark_;   // block steps: scratch of neighbourhood_of()
   std::vector<std::uint32_t> needed_list_;  // block steps: the particles whose state is read
-  std::vector<std::uint32_t> all_indices_;  // block steps: 0 .. active_-1
   std::uint64_t particle_updates_ = 0;
   PhaseTimers timers_;
   RateSummary rate_summary_{};
@@ -186,6 +191,7 @@ class Simulation {
   std::uint64_t step_ = 0;
   std::uint64_t rebuilds_ = 0;
   bool force_rebuild_ = true;
+  std::function<void()> between_substeps_;
   bool porous_ = false;  // a material has [porosity]: the distention evolves (P-alpha)
   std::size_t active_ = 0;
   bool late_stage_active_ = false;
