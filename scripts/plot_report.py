@@ -84,9 +84,14 @@ def observed_band(ax, section):
     ax.axhline(r0, color="0.55", lw=1)
 
 
+def legend_below(ax):
+    # Below the axes: a study has many series, and a legend inside would cover some of their points.
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1, frameon=False)
+
+
 def sci_cohesion(plt, report, path):
     section = report["sci_engine"]
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = plt.subplots(figsize=(7.5, 6.5))
     observed_band(ax, section)
     for series in section["series"]:
         points = series["points"]
@@ -100,14 +105,14 @@ def sci_cohesion(plt, report, path):
     ax.set_xlabel("cohesion (Pa; linear below 0.01 Pa)")
     ax.set_ylabel("SCI crater radius (m)")
     ax.set_title("the engine's SCI crater (x: the cohesion of the observed radius)", fontsize=9)
-    ax.legend(fontsize=7)
+    legend_below(ax)
     fig.tight_layout()
     save(fig, path)
 
 
 def friction(plt, report, path):
     section = report["friction"]
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig, ax = plt.subplots(figsize=(7.5, 6.5))
     observed_band(ax, section)
     for series in section["series"]:
         points = series["points"]
@@ -117,7 +122,7 @@ def friction(plt, report, path):
     ax.set_xlabel("friction coefficient")
     ax.set_ylabel("SCI crater radius without cohesion (m)")
     ax.set_title("the engine's cohesionless SCI crater", fontsize=9)
-    ax.legend(fontsize=7)
+    legend_below(ax)
     fig.tight_layout()
     save(fig, path)
 
