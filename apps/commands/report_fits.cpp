@@ -63,16 +63,24 @@ std::vector<double> sorted_cohesions(const scaling::RadiiTable& table, const sca
 
 }  // namespace
 
+namespace {
+
+// A grouping value as written in a table (a sweep writes numbers to 17 digits, 0.55000000000000004), shown
+// to 6 significant digits when it is a number.
+std::string value_label(const std::string& value) {
+  char* end = nullptr;
+  const double number = std::strtod(value.c_str(), &end);
+  const bool numeric = !value.empty() && end == value.c_str() + value.size();
+  return numeric ? fmt::format("{:.6g}", number) : value;
+}
+
+}  // namespace
+
 std::string key_label(const scaling::GroupKey& key) {
   if (key.empty()) return "all rows";
   std::string out;
-  for (const auto& [column, value] : key) {
-    char* end = nullptr;
-    const double number = std::strtod(value.c_str(), &end);
-    const bool numeric = !value.empty() && end == value.c_str() + value.size();
-    out += fmt::format("{}{}={}", out.empty() ? "" : ", ", column,
-                       numeric ? fmt::format("{:.6g}", number) : value);
-  }
+  for (const auto& [column, value] : key)
+    out += fmt::format("{}{}={}", out.empty() ? "" : ", ", column, value_label(value));
   return out;
 }
 
@@ -157,7 +165,7 @@ std::string fits_markdown(const std::vector<TableFits>& fits) {
     }
     for (const auto& pooled : result.pooled) {
       std::string values;
-      for (const auto& v : pooled.values) values += (values.empty() ? "" : ", ") + v;
+      for (const auto& v : pooled.values) values += (values.empty() ? "" : ", ") + value_label(v);
       md += fmt::format("; fitted together over {} = {}", pooled.name, values);
     }
     md += fmt::format("; fit file {}{}.\n\n", table_fits.fit_file,
