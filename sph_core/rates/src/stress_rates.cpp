@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "craterkit/sph/physics/deviatoric_stress.hpp"
 #include "craterkit/sph/physics/material_response.hpp"
@@ -68,8 +69,19 @@ void update_material_state(Particles& p, std::span<const Material> materials, Ra
   }
 }
 
-void compute_stress_rates(Particles& p, const VelocityGradients& gradients,
-                          std::span<const double> shear_modulus, const ParticleSelection& selection) {
+namespace {
+
+bool counts_plastic_strain(const Material& material) {
+  if (!material.strength) return false;
+  const auto* law = std::get_if<LundborgStrength>(&*material.strength);
+  return law != nullptr && law->weakening_strain == WeakeningStrain::plastic;
+}
+
+}  // namespace
+
+void compute_stress_rates(Particles& p, std::span<const Material> materials,
+                          const VelocityGradients& gradients, std::span<const double> shear_modulus,
+                          const ParticleSelection& selection) {
   const auto n = static_cast<std::int64_t>(selection.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
@@ -84,14 +96,25 @@ void compute_stress_rates(Particles& p, const VelocityGradients& gradients,
     for (int a = 0; a < 3; ++a) {
       for (int b = 0; b < 3; ++b) L[a][b] = gradients.corrected[3 * a + b][i];
     }
-    const DeviatoricStress rate = jaumann_stress_rate(
-        {p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i], p.stress_yz[i]}, L, G);
+    const DeviatoricStress stress{p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i],
+                                  p.stress_yz[i]};
+    const DeviatoricStress rate = jaumann_stress_rate(stress, L, G);
     p.stress_rate_xx[i] = rate.xx;
     p.stress_rate_xy[i] = rate.xy;
     p.stress_rate_xz[i] = rate.xz;
     p.stress_rate_yy[i] = rate.yy;
     p.stress_rate_yz[i] = rate.yz;
-    p.total_strain_rate[i] = deviatoric_strain_rate_invariant(L);
+    const Material& material = materials[p.material[i]];
+    if (!counts_plastic_strain(material)) {
+      p.total_strain_rate[i] = deviatoric_strain_rate_invariant(L);
+      continue;
+    }
+    // On the yield surface: the stress was returned to it by update_material_state() (to rounding), or is
+    // within the 1e-12 that the return leaves alone; the same Y, from the floored pressure and the strain.
+    const double yield_strength =
+        evaluate_strength(material.strength, p.pressure[i], p.total_strain[i]).yield_strength;
+    const bool at_yield = std::sqrt(second_invariant(stress)) >= yield_strength * (1.0 - 1e-9);
+    p.total_strain_rate[i] = at_yield ? plastic_strain_rate_at_yield(stress, L) : 0.0;
   }
 }
 

@@ -245,7 +245,8 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
     auto scope = timers_.measure("rates");
     rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours, lists_.ends}, rate_options_,
                                   rate_workspace_, rates_for, rate_options_.solid ? &gradients_ : nullptr);
-    if (rate_options_.solid) compute_stress_rates(p, gradients_, shear_modulus_, rates_for);
+    if (rate_options_.solid)
+      compute_stress_rates(p, problem_.materials, gradients_, shear_modulus_, rates_for);
     if (porous_) compute_distention_rates(p, problem_.materials, rates_for);
   }
 }

@@ -8,8 +8,10 @@
 //    the deviatoric stress onto the yield surface of the current state (deviatoric_stress.hpp). Calling
 //    it after each update of the stress (predict and correct) is the "radial return after each step".
 //  - compute_stress_rates(): after the pair pass, the Jaumann rate dS/dt of Hooke's law with the
-//    Randles-Libersky corrected velocity gradient, and the rate of the accumulated strain
-//    sqrt(eps_dot':eps_dot'/2), stored in Particles for the integrator.
+//    Randles-Libersky corrected velocity gradient, and the rate of the accumulated strain that weakens the
+//    cohesion (yield_strength.hpp, WeakeningStrain): the total sqrt(eps_dot':eps_dot'/2), or for a
+//    material counting the plastic strain the plastic rate of a stress on the yield surface (zero below
+//    it), stored in Particles for the integrator.
 //  - compute_distention_rates(): after the pair pass, the P-alpha distention rate dalpha/dt of
 //    Jutzi et al. (2008) (p_alpha.hpp) from the pair pass's drho/dt and du/dt at the same state.
 // Porous materials (docs/physics.md section 2, "Porosity"; rules in material_response.hpp):
@@ -43,10 +45,12 @@ void update_material_state(Particles& particles, std::span<const Material> mater
                            RateWorkspace& workspace, std::vector<double>& shear_modulus,
                            const ParticleSelection& selection);
 
-// dS/dt and d(total strain)/dt of every active particle from the corrected gradient of the last rate
-// pass (zero for fixed and ejected particles, and no strain accumulates where G = 0).
-void compute_stress_rates(Particles& particles, const VelocityGradients& gradients,
-                          std::span<const double> shear_modulus, const ParticleSelection& selection);
+// dS/dt and the rate of the weakening strain (Particles::total_strain_rate) of every active particle from
+// the corrected gradient of the last rate pass (zero for fixed and ejected particles, and no strain
+// accumulates where G = 0). Requires pressure and the returned stress from update_material_state().
+void compute_stress_rates(Particles& particles, std::span<const Material> materials,
+                          const VelocityGradients& gradients, std::span<const double> shear_modulus,
+                          const ParticleSelection& selection);
 
 // After the corrector: a porous particle whose distention fell in the step below the crush-curve value of
 // its new state (the distention that puts the state reached from alpha^n = distention_before on the
