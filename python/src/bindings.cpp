@@ -857,12 +857,22 @@ PYBIND11_MODULE(_craterkit, m) {
 
   py::class_<ck::ChronologySystem>(
       m, "ChronologySystem",
-      "A published chronology system: production polynomial and N(1)(t) (data/chronology/).")
+      "A published chronology system: production function (a polynomial, or Hartmann's table of incremental "
+      "densities in root-2 diameter bins) and N(1)(t) (data/chronology/).")
       .def_readonly("name", &ck::ChronologySystem::name)
       .def_readonly("title", &ck::ChronologySystem::title)
       .def_readonly("body", &ck::ChronologySystem::body)
       .def_readonly("citation", &ck::ChronologySystem::citation)
-      .def_readonly("production_coefficients", &ck::ChronologySystem::production)
+      .def_property_readonly(
+          "production_form", [](const ck::ChronologySystem& s) { return ck::to_string(s.production_form); },
+          "'polynomial' or 'tabular_incremental_root2'.")
+      .def_readonly("production_coefficients", &ck::ChronologySystem::production,
+                    "Polynomial form: a0 .. an (empty for the tabular form).")
+      .def_readonly("incremental_density", &ck::ChronologySystem::incremental_density,
+                    "Tabular form: craters per km^2 in [2^((i - index_1km)/2), 2^((i - index_1km + 1)/2)) km "
+                    "(empty for the polynomial form).")
+      .def_readonly("index_1km", &ck::ChronologySystem::index_1km,
+                    "Tabular form: the bin of incremental_density that starts at 1 km.")
       .def_readonly("chronology_coefficients", &ck::ChronologySystem::chronology)
       .def_property_readonly(
           "diameter_range",
@@ -884,5 +894,6 @@ PYBIND11_MODULE(_craterkit, m) {
   m.def("chronology_system_names", &ck::chronology_system_names);
   m.def(
       "load_chronology_system", &ck::load_chronology_system, py::arg("name"),
-      "A shipped chronology system ('moon_neukum2001', 'mars_neukum_ivanov2001') or a system .toml by path.");
+      "A shipped chronology system (chronology_system_names(): 'moon_neukum2001', 'mars_neukum_ivanov2001', "
+      "'moon_hartmann2010', 'mars_hartmann2005', 'mars_hartmann_daubar2016') or a system .toml by path.");
 }

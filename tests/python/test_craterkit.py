@@ -287,6 +287,21 @@ class Chronology(unittest.TestCase):
                            prior="density")
         self.assertTrue(close(got.median, want["ages"][0]["median_yr"]))
         self.assertTrue(math.isclose(got.median / 1e9, 0.81299883, rel_tol=6e-3))  # craterstats 3.6.10
+        # a system whose production function is Hartmann's table (tabular incremental root-2)
+        mars = ck.load_chronology_system("mars_hartmann2005")
+        self.assertIn("mars_hartmann_daubar2016", ck.chronology_system_names())
+        self.assertEqual(mars.production_form, "tabular_incremental_root2")
+        self.assertEqual((len(mars.incremental_density), mars.index_1km, len(mars.production_coefficients)),
+                         (36, 16, 0))
+        self.assertEqual(moon.production_form, "polynomial")
+        # craterstats 3.6.10: Productionfn('Mars, Hartmann (2005)').C(3.7, Chronologyfn(...).a0(3.0))
+        self.assertTrue(close(float(mars.cumulative_density(3700.0, 3e9)), 1.5021119133634729e-4, 1e-12))
+        want = cli("age", unit, "--chronology", "mars_hartmann2005", "--min-diameter", 200, "--max-diameter", 1000,
+                   "--fractions", "whole", "--prior", "density")
+        got = ck.model_age(ck.read_counts(unit), mars, min_diameter=200, max_diameter=1000, fractions="whole",
+                           prior="density")
+        self.assertTrue(close(got.median, want["ages"][0]["median_yr"]))
+        self.assertTrue(math.isclose(got.median / 1e9, 1.7215997, rel_tol=6e-3))  # craterstats 3.6.10
         with self.assertRaisesRegex(ValueError, "allowed: weight, whole"):
             ck.model_age(partial, production, fractions="half")
 
