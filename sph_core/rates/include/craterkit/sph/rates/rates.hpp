@@ -120,7 +120,9 @@ struct PairList {
   std::span<const std::uint32_t> neighbours;
   std::span<const std::uint64_t> ends = {};
   // Where list i ends: ends[i] reads ends_of()[i].
-  [[nodiscard]] const std::uint64_t* ends_of() const { return ends.empty() ? offsets.data() + 1 : ends.data(); }
+  [[nodiscard]] const std::uint64_t* ends_of() const {
+    return ends.empty() ? offsets.data() + 1 : ends.data();
+  }
 };
 
 // Corrected velocity gradient (grad v)_ab = dv_a/dx_b per particle, row-major (xx, xy, xz, yx, ...), for
@@ -169,6 +171,16 @@ RateSummary compute_rates(Particles& particles, const PairList& pairs, const Rat
 RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                           RateWorkspace& workspace, const ParticleSelection& selection,
                           VelocityGradients* gradients = nullptr);
+
+// Solids (options.solid): the same pass over the selected particles, which in addition writes their stress
+// rates as compute_stress_rates() would (store_stress_rate, stress_rates.hpp) from the corrected velocity
+// gradient it has just computed. Why: the gradient is then not stored, so a solver that needs nothing else of
+// it holds no VelocityGradients (9 doubles, 72 bytes per particle). shear_modulus as update_material_state()
+// fills it.
+RateSummary compute_rates_and_stress_rates(Particles& particles, const PairList& pairs,
+                                           const RateOptions& options, RateWorkspace& workspace,
+                                           const ParticleSelection& selection,
+                                           std::span<const double> shear_modulus);
 
 [[nodiscard]] std::string_view viscosity_switch_name(ViscositySwitch s) noexcept;
 

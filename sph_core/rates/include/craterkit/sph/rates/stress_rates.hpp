@@ -9,7 +9,8 @@
 //    it after each update of the stress (predict and correct) is the "radial return after each step".
 //  - compute_stress_rates(): after the pair pass, the Jaumann rate dS/dt of Hooke's law with the
 //    Randles-Libersky corrected velocity gradient, and the rate of the accumulated strain
-//    sqrt(eps_dot':eps_dot'/2), stored in Particles for the integrator.
+//    sqrt(eps_dot':eps_dot'/2), stored in Particles for the integrator. The solver has the pair pass
+//    store them itself (compute_rates_and_stress_rates, rates.hpp, through store_stress_rate below).
 //  - compute_distention_rates(): after the pair pass, the P-alpha distention rate dalpha/dt of
 //    Jutzi et al. (2008) (p_alpha.hpp) from the pair pass's drho/dt and du/dt at the same state.
 // Porous materials (docs/physics.md section 2, "Porosity"; rules in material_response.hpp):
@@ -26,10 +27,12 @@
 //    by alpha again in the momentum equation.
 // Each function works on the selected particles only (all of them with a global time step, those whose
 // step ends now with block time steps) and leaves the others untouched.
+#include <cstddef>
 #include <span>
 #include <vector>
 
 #include "craterkit/sph/particles/particles.hpp"
+#include "craterkit/sph/physics/deviatoric_stress.hpp"
 #include "craterkit/sph/physics/material.hpp"
 #include "craterkit/sph/rates/rates.hpp"
 
@@ -47,6 +50,25 @@ void update_material_state(Particles& particles, std::span<const Material> mater
 // pass (zero for fixed and ejected particles, and no strain accumulates where G = 0).
 void compute_stress_rates(Particles& particles, const VelocityGradients& gradients,
                           std::span<const double> shear_modulus, const ParticleSelection& selection);
+
+// What compute_stress_rates() stores for one moving particle i with corrected velocity gradient L
+// (L[a][b] = dv_a/dx_b) and shear modulus G; shared with the pair pass that computes the stress rates
+// itself (compute_rates_and_stress_rates), so that both give the same bits.
+inline void store_stress_rate(Particles& p, std::size_t i, const Tensor3& L, double G) {
+  if (!(G > 0.0)) {
+    p.stress_rate_xx[i] = p.stress_rate_xy[i] = p.stress_rate_xz[i] = 0.0;
+    p.stress_rate_yy[i] = p.stress_rate_yz[i] = p.total_strain_rate[i] = 0.0;
+    return;
+  }
+  const DeviatoricStress rate = jaumann_stress_rate(
+      {p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i], p.stress_yz[i]}, L, G);
+  p.stress_rate_xx[i] = rate.xx;
+  p.stress_rate_xy[i] = rate.xy;
+  p.stress_rate_xz[i] = rate.xz;
+  p.stress_rate_yy[i] = rate.yy;
+  p.stress_rate_yz[i] = rate.yz;
+  p.total_strain_rate[i] = deviatoric_strain_rate_invariant(L);
+}
 
 // After the corrector: a porous particle whose distention fell in the step below the crush-curve value of
 // its new state (the distention that puts the state reached from alpha^n = distention_before on the
