@@ -69,16 +69,6 @@ void update_material_state(Particles& p, std::span<const Material> materials, Ra
   }
 }
 
-namespace {
-
-bool counts_plastic_strain(const Material& material) {
-  if (!material.strength) return false;
-  const auto* law = std::get_if<LundborgStrength>(&*material.strength);
-  return law != nullptr && law->weakening_strain == WeakeningStrain::plastic;
-}
-
-}  // namespace
-
 void compute_stress_rates(Particles& p, std::span<const Material> materials,
                           const VelocityGradients& gradients, std::span<const double> shear_modulus,
                           const ParticleSelection& selection) {
@@ -86,35 +76,12 @@ void compute_stress_rates(Particles& p, std::span<const Material> materials,
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = selection.at(static_cast<std::size_t>(ii));
-    const double G = shear_modulus[i];
-    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0 || !(G > 0.0)) {
-      p.stress_rate_xx[i] = p.stress_rate_xy[i] = p.stress_rate_xz[i] = 0.0;
-      p.stress_rate_yy[i] = p.stress_rate_yz[i] = p.total_strain_rate[i] = 0.0;
-      continue;
-    }
+    const bool moving = (p.flags[i] & (particle_fixed | particle_ejected)) == 0;
     Tensor3 L{};
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) L[a][b] = gradients.corrected[3 * a + b][i];
+      for (int b = 0; b < 3; ++b) L[a][b] = moving ? gradients.corrected[3 * a + b][i] : 0.0;
     }
-    const DeviatoricStress stress{p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i],
-                                  p.stress_yz[i]};
-    const DeviatoricStress rate = jaumann_stress_rate(stress, L, G);
-    p.stress_rate_xx[i] = rate.xx;
-    p.stress_rate_xy[i] = rate.xy;
-    p.stress_rate_xz[i] = rate.xz;
-    p.stress_rate_yy[i] = rate.yy;
-    p.stress_rate_yz[i] = rate.yz;
-    const Material& material = materials[p.material[i]];
-    if (!counts_plastic_strain(material)) {
-      p.total_strain_rate[i] = deviatoric_strain_rate_invariant(L);
-      continue;
-    }
-    // On the yield surface: the stress was returned to it by update_material_state() (to rounding), or is
-    // within the 1e-12 that the return leaves alone; the same Y, from the floored pressure and the strain.
-    const double yield_strength =
-        evaluate_strength(material.strength, p.pressure[i], p.total_strain[i]).yield_strength;
-    const bool at_yield = std::sqrt(second_invariant(stress)) >= yield_strength * (1.0 - 1e-9);
-    p.total_strain_rate[i] = at_yield ? plastic_strain_rate_at_yield(stress, L) : 0.0;
+    store_stress_rate(p, i, L, moving ? shear_modulus[i] : 0.0, materials[p.material[i]]);
   }
 }
 
