@@ -22,6 +22,7 @@
 #include "craterkit/scaling/grouped_fit.hpp"
 #include "craterkit/scaling/radii_table.hpp"
 #include "fit_report.hpp"
+#include "group_by_flag.hpp"
 #include "json_output.hpp"
 #include "output_checks.hpp"
 #include "progress_line.hpp"
@@ -57,24 +58,6 @@ std::pair<std::string, double> parse_fix(const std::string& text) {
     throw InputError("--fix '" + text + "': '" + value_text + "' is not a finite number; use " + allowed);
   }
   return {name, value};
-}
-
-// --group-by: "none" (one fit over every row) or grouping column names, comma-separated.
-std::vector<std::string> parse_group_by(const std::string& text) {
-  if (text == "none") return {};
-  std::vector<std::string> names;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string name = text.substr(start, comma - start);
-    if (name.empty() || name == "none") {
-      throw InputError("--group-by '" + text +
-                       "' is not allowed: use none, or grouping column names separated by commas");
-    }
-    names.push_back(name);
-    start = comma + 1;
-  }
-  return names;
 }
 
 void run_fit(const FitCommandOptions& options) {

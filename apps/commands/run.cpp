@@ -3,6 +3,7 @@
 //  2. the Ceres fit of the point-source constants to the engine's craters;
 //  3. the SCI crater and the cohesion that makes the observed radius;
 //  4. crater-formation rates per cohesion and 5. model ages per cohesion.
+// Stages 2-5 and the files they write are `craterkit report`'s (report_builder.hpp) on the job's table.
 // By default the live study is two runs of the shipped cohesion x size study, which are checked against its
 // table, and the fit uses that whole table (data/radii/); --full runs the whole study live, --study any
 // study.
@@ -27,7 +28,7 @@
 #include "craterkit_version.hpp"
 #include "json_output.hpp"
 #include "main_job_stages.hpp"
-#include "python_plot.hpp"
+#include "report_builder.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -96,27 +97,6 @@ scaling::RadiiTable run_simulations(const std::filesystem::path& study_file, con
   return scaling::read_radii_csv(sweep.tables.radii_csv);
 }
 
-// Draws DIR/main_job.png from DIR/summary.json (scripts/plot_main_job.py) and returns its file name, or
-// returns why there is no figure, prefixed with "no figure: " (the numbers do not depend on it).
-std::string draw_figure(const std::filesystem::path& dir) {
-  constexpr const char* kOverride = "CRATERKIT_PLOT_MAIN_JOB_SCRIPT";
-  const auto script = plot_script("plot_main_job.py", kOverride);
-  if (auto why = plotting_unavailable(script, kOverride); !why.empty()) return "no figure: " + why;
-  const int status =
-      run_python({script.string(), (dir / "summary.json").string(), (dir / "main_job.png").string()});
-  if (status != 0) return fmt::format("no figure: plot_main_job.py failed (exit status {})", status);
-  return "main_job.png";
-}
-
-std::string figure_note(const std::string& figure) {
-  if (figure != "main_job.png") return "\n" + figure + "\n";
-  return "\n![the main job's figure](" + figure +
-         ")\n\n(a) the engine's craters as pi_R against pi_2 with the "
-         "fitted law per cohesion and the published law without cohesion; (b) the SCI crater against "
-         "cohesion "
-         "with the observed band; (c) rates relative to 1 Pa; (d) model ages.\n";
-}
-
 void run_main_job(const MainJobOptions& o) {
   check_options(o);
   const bool default_study = !o.full && !o.study;
@@ -136,37 +116,40 @@ void run_main_job(const MainJobOptions& o) {
     }
     return;
   }
-  std::string report = fmt::format("# craterkit main job\n\n{}; results in {}.\n", producer(), o.out);
-  nlohmann::json summary = {{"producer", producer()}, {"study", study_file.string()}};
+  std::string preamble;
+  nlohmann::json extra = {{"study", study_file.string()}};
 
-  const scaling::RadiiTable live = run_simulations(study_file, o, report);
+  const scaling::RadiiTable live = run_simulations(study_file, o, preamble);
   scaling::RadiiTable table = live;
   if (default_study) {
     table = scaling::read_radii_csv(data_file(kShippedTable));
-    summary["live_runs"] = compare_with_shipped(live, table, report);
+    extra["live_runs"] = compare_with_shipped(live, table, preamble);
   }
-  if (!o.json)
-    fmt::print("2. fit of the scaling constants to {} craters of {}\n", table.rows.size(), table.source);
-  nlohmann::json fit_json;
-  const auto fit = fit_engine_radii(table, fit_json, report);
-  summary["fit"] = fit_json;
-  if (!o.json) fmt::print("3. the SCI crater, 4. rates and 5. ages per cohesion under the fitted law\n");
-  summary["sci"] = sci_cohesion(fit.law(), table.rows.front().target.density, report);
-  summary["rates"] = relative_rates(fit.law(), report);
-  summary["ages"] = model_ages(fit.law(), report);
-
-  const std::filesystem::path dir(o.out);
-  write_text_atomically(dir / "fit.json", with_version(fit_json).dump(2) + "\n");
-  write_text_atomically(dir / "summary.json", with_version(summary).dump(2) + "\n");
-  const std::string figure = draw_figure(dir);
-  write_text_atomically(dir / "report.md", report + figure_note(figure));
+  if (!o.json) {
+    fmt::print(
+        "2. fit of the scaling constants to {} craters of {}; 3. the SCI crater, 4. rates and 5. ages per "
+        "cohesion under the fitted law\n",
+        table.rows.size(), table.source);
+    std::fflush(stdout);
+  }
+  // The main job's report is `craterkit report`'s on its table, with one fit over every row: a study of one
+  // target, or the law of the study's whole table when --study varies more.
+  ReportOptions options;
+  options.group_by = std::vector<std::string>{};
+  options.title = "craterkit main job";
+  options.producer = producer();
+  options.preamble = preamble;
+  options.extra = extra;
+  options.progress = true;
+  const auto written = write_report(build_report({table}, options), o.out, options.progress);
   if (o.json) {
-    print_json(summary);
+    std::cout << written.json;
     return;
   }
-  std::cout << report << figure_note(figure);
-  fmt::print("\nwritten: {}, {}, {}{}\n", (dir / "report.md").string(), (dir / "summary.json").string(),
-             (dir / "fit.json").string(), figure == "main_job.png" ? ", " + (dir / figure).string() : "");
+  std::cout << written.markdown;
+  std::string files;
+  for (const auto& f : written.files) files += (files.empty() ? "" : ", ") + f.string();
+  fmt::print("\nwritten: {}\n", files);
 }
 
 void add_run_command(CLI::App& parent) {
@@ -175,16 +158,18 @@ void add_run_command(CLI::App& parent) {
       "run",
       "The main job: impacts simulated by the engine -> fitted scaling constants -> the SCI cohesion, "
       "crater-formation rates and model ages per cohesion");
-  sub->add_option("--out", options->out, "Folder of the runs and results (report.md, summary.json, fit.json)")
+  sub->add_option("--out", options->out,
+                  "Folder of the runs and results (report.md, report.json, fit.json, figures)")
       ->capture_default_str();
-  sub->add_flag("--full", options->full,
-                "Run the whole shipped cohesion x size study live (25 runs, about an hour on 2 cores) and fit it");
+  sub->add_flag(
+      "--full", options->full,
+      "Run the whole shipped cohesion x size study live (25 runs, about an hour on 2 cores) and fit it");
   sub->add_option("--study", options->study, "Run this study (docs/sweep.md) live and fit its craters");
   sub->add_option("--jobs", options->jobs, "Runs at once (default: the cores, at most the runs)");
   sub->add_option("--threads", options->threads, "OpenMP threads per run (default: cores / jobs)");
   sub->add_flag("--dry-run", options->dry_run,
                 "Check the study and list its runs with their particle counts; run and write nothing");
-  sub->add_flag("--json", options->json, "Print summary.json instead of the report");
+  sub->add_flag("--json", options->json, "Print report.json instead of the report");
   sub->footer(
       "Runs finished by an earlier main job in the same --out are reused. Default: two runs of "
       "data/studies/cohesion_size_coarse.toml, checked against its shipped table data/radii/"

@@ -40,6 +40,7 @@ from ._craterkit import (
     read_counts,
     read_snapshot,
     relative_rate,
+    relative_rate_spread,
     sample_laws,
     strength_limit_radius,
     write_counts,
@@ -50,11 +51,29 @@ __version__ = "@PROJECT_VERSION@"
 
 __all__ = [
     "AgeEstimate", "Body", "ChronologySystem", "ConstantSet", "CraterCounts", "FitResult", "Population", "Production", "ScalingLaw",
-    "body_names", "chronology_system_names", "constant_set_names", "crater_radius", "data_directory", "fit", "gravity_limit_radius",
+    "body_names", "chronology_system_names", "constant_set_names", "crater_radius", "data_directory", "fit", "fit_groups", "gravity_limit_radius",
     "impact_velocity", "impactor_radius", "law", "load_body", "load_chronology_system", "load_constant_set", "load_fit", "load_population",
-    "measure_crater", "model_age", "model_age_spread", "population_names", "power_law_population", "read_counts", "read_snapshot", "relative_rate", "sample_laws",
+    "measure_crater", "model_age", "model_age_spread", "population_names", "power_law_population", "read_counts", "read_snapshot", "relative_rate", "relative_rate_spread", "sample_laws",
     "strength_limit_radius", "write_counts",
 ]
+
+
+def fit_groups(table, form="holsapple", fixed=None, group_by=None, require_growth_ended=False, starts=12,
+               seed=20221):
+    """One Ceres fit per group of a sweep table's grouping columns, as `craterkit fit --group-by`.
+
+    table: the path of a radii CSV with grouping columns (friction, porosity, resolution, ...; `craterkit sweep`
+    writes them). group_by: the columns to fit separately (default: every grouping column; [] for one fit over
+    all rows). require_growth_ended: leave out the rows whose growth did not end. Returns a dict: 'groups' (a
+    list of dicts with 'key' {column: value as written}, 'label', 'lines', 'cohesions', 'strength_range',
+    'fit' (a FitResult, or None with the reason in 'not_fitted'), 'regimes' {gravity, transitional,
+    strength}), 'group_by', 'pooled' {column: values fitted together}, 'excluded', 'notes', and 'json' (what
+    `craterkit fit --out` writes; load_fit(path, group='KEY=VALUE,...') reads a group's law from it).
+    """
+    if group_by is not None:
+        group_by = [group_by] if isinstance(group_by, str) else list(group_by)
+    return _craterkit._fit_groups(_os.fspath(table), form, dict(fixed or {}), group_by,
+                                  bool(require_growth_ended), int(starts), int(seed))
 
 
 def law(name_or_path):

@@ -34,6 +34,7 @@
 #include "craterkit/scaling/constant_sets.hpp"
 #include "craterkit/scaling/fit.hpp"
 #include "craterkit/scaling/fit_json.hpp"
+#include "craterkit/scaling/grouped_fit.hpp"
 #include "craterkit/scaling/law_uncertainty.hpp"
 #include "craterkit/scaling/point_source.hpp"
 #include "craterkit/scaling/radii_table.hpp"
@@ -153,6 +154,54 @@ cs::FitResult fit(const py::object& table, const std::string& form,
   if (py::isinstance<py::dict>(table)) return cs::fit_scaling_law(table_from_columns(table), options);
   const auto path = py::cast<std::string>(py::module_::import("os").attr("fspath")(table));
   return cs::fit_scaling_law(cs::read_radii_csv(path), options);
+}
+
+// One fit per group of a sweep table's grouping columns, as `craterkit fit --group-by` (grouped_fit.hpp).
+// Returns the groups and the JSON `craterkit fit --out` writes for them (readable by load_fit with group=).
+py::dict fit_groups(const std::string& table_path, const std::string& form,
+                    const std::map<std::string, double>& fixed,
+                    std::optional<std::vector<std::string>> group_by, bool require_growth_ended, int starts,
+                    unsigned int seed) {
+  cs::GroupedFitOptions options;
+  options.fit.form = cs::form_from_string(form);
+  for (const auto& [name, value] : fixed) options.fit.fixed.emplace_back(name, value);
+  if (starts < 1)
+    throw craterkit::InputError("fit_groups: starts " + std::to_string(starts) + " must be >= 1");
+  options.fit.starts = starts;
+  options.fit.seed = seed;
+  options.group_by = std::move(group_by);
+  options.require_growth_ended = require_growth_ended;
+  const auto result = cs::fit_groups(cs::read_radii_csv(table_path), options);
+  py::list groups;
+  for (const auto& group : result.groups) {
+    py::dict key;
+    for (const auto& [column, value] : group.key) key[py::str(column)] = value;
+    py::dict g;
+    g["key"] = key;
+    g["label"] = cs::describe(group.key);
+    g["lines"] = group.lines;
+    g["cohesions"] = group.cohesions;
+    g["strength_range"] = py::make_tuple(group.min_strength, group.max_strength);
+    g["growth_not_ended"] = group.growth_not_ended;
+    g["fit"] = group.fit ? py::cast(*group.fit) : py::none();
+    g["not_fitted"] = group.not_fitted;
+    py::dict regimes;
+    regimes["gravity"] = group.regime_counts.gravity;
+    regimes["transitional"] = group.regime_counts.transitional;
+    regimes["strength"] = group.regime_counts.strength;
+    g["regimes"] = regimes;
+    groups.append(g);
+  }
+  py::dict out;
+  out["group_by"] = result.group_by;
+  py::dict pooled;
+  for (const auto& column : result.pooled) pooled[py::str(column.name)] = column.values;
+  out["pooled"] = pooled;
+  out["excluded"] = result.excluded;
+  out["notes"] = result.notes;
+  out["groups"] = groups;
+  out["json"] = cs::grouped_fit_to_json(result).dump(2) + "\n";
+  return out;
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -463,6 +512,8 @@ PYBIND11_MODULE(_craterkit, m) {
       });
   m.def("_fit", &fit, py::arg("table"), py::arg("form"), py::arg("fixed"), py::arg("shared_strength"),
         py::arg("starts"), py::arg("seed"));
+  m.def("_fit_groups", &fit_groups, py::arg("table"), py::arg("form"), py::arg("fixed"), py::arg("group_by"),
+        py::arg("require_growth_ended"), py::arg("starts"), py::arg("seed"));
   m.def(
       "load_fit",
       [](const std::filesystem::path& path, std::optional<std::string> group) {
@@ -737,6 +788,46 @@ PYBIND11_MODULE(_craterkit, m) {
       "Laws drawn from the covariance of a fit JSON (as `--samples N --seed S` of rates and age): seeded, "
       "truncated to the fit's ranges.");
   m.def(
+      "relative_rate_spread",
+      [](const Production& a, const Production& b, const std::vector<cs::ScalingLaw>& laws, const Array& d) {
+        if (laws.empty())
+          throw craterkit::InputError("relative_rate_spread needs at least one law (sample_laws)");
+        if (a.impactor_density != b.impactor_density) {
+          throw craterkit::InputError("relative_rate_spread: the productions' impactor densities differ (" +
+                                      craterkit::format_number(a.impactor_density) + " and " +
+                                      craterkit::format_number(b.impactor_density) +
+                                      " kg/m^3); the draws are one law for both");
+        }
+        const Array flat = Array::ensure(d.attr("ravel")());
+        const auto n = static_cast<std::size_t>(flat.size());
+        std::vector<double> columns[9];
+        for (auto& c : columns) c.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+          const auto spread = ck::rate_spread(a.setup, laws, b.target, a.target, a.impactor_density,
+                                              flat.at(static_cast<py::ssize_t>(i)));
+          const cs::Percentiles* ps[3] = {&spread.relative_rate, &spread.rate, &spread.impactor_radius};
+          for (int k = 0; k < 3; ++k) {
+            columns[3 * k][i] = ps[k]->p16;
+            columns[3 * k + 1][i] = ps[k]->p50;
+            columns[3 * k + 2][i] = ps[k]->p84;
+          }
+        }
+        const auto shaped = [&](const std::vector<double>& v) {
+          return to_numpy(v).attr("reshape")(d.attr("shape"));
+        };
+        py::dict out;
+        const char* names[3] = {"ratio", "rate_b", "impactor_radius_b"};
+        for (int k = 0; k < 3; ++k)
+          out[names[k]] =
+              py::make_tuple(shaped(columns[3 * k]), shaped(columns[3 * k + 1]), shaped(columns[3 * k + 2]));
+        return out;
+      },
+      py::arg("a"), py::arg("b"), py::arg("laws"), py::arg("diameter"),
+      "The scaling law's uncertainty in r_B(D)/r_A(D) (as `craterkit rates --fit F --samples N`): each law "
+      "of "
+      "`laws` (sample_laws) in place of both productions' law, A's set-up and B's cohesion against A's; "
+      "ratio, rate_b (per m^2 per year) and impactor_radius_b (m) as (p16, p50, p84) arrays of D's shape.");
+  m.def(
       "model_age_spread",
       [](const ck::CraterCounts& counts, const Production& production,
          const std::vector<cs::ScalingLaw>& laws, double min_diameter, double max_diameter,
@@ -766,12 +857,22 @@ PYBIND11_MODULE(_craterkit, m) {
 
   py::class_<ck::ChronologySystem>(
       m, "ChronologySystem",
-      "A published chronology system: production polynomial and N(1)(t) (data/chronology/).")
+      "A published chronology system: production function (a polynomial, or Hartmann's table of incremental "
+      "densities in root-2 diameter bins) and N(1)(t) (data/chronology/).")
       .def_readonly("name", &ck::ChronologySystem::name)
       .def_readonly("title", &ck::ChronologySystem::title)
       .def_readonly("body", &ck::ChronologySystem::body)
       .def_readonly("citation", &ck::ChronologySystem::citation)
-      .def_readonly("production_coefficients", &ck::ChronologySystem::production)
+      .def_property_readonly(
+          "production_form", [](const ck::ChronologySystem& s) { return ck::to_string(s.production_form); },
+          "'polynomial' or 'tabular_incremental_root2'.")
+      .def_readonly("production_coefficients", &ck::ChronologySystem::production,
+                    "Polynomial form: a0 .. an (empty for the tabular form).")
+      .def_readonly("incremental_density", &ck::ChronologySystem::incremental_density,
+                    "Tabular form: craters per km^2 in [2^((i - index_1km)/2), 2^((i - index_1km + 1)/2)) km "
+                    "(empty for the polynomial form).")
+      .def_readonly("index_1km", &ck::ChronologySystem::index_1km,
+                    "Tabular form: the bin of incremental_density that starts at 1 km.")
       .def_readonly("chronology_coefficients", &ck::ChronologySystem::chronology)
       .def_property_readonly(
           "diameter_range",
@@ -793,5 +894,6 @@ PYBIND11_MODULE(_craterkit, m) {
   m.def("chronology_system_names", &ck::chronology_system_names);
   m.def(
       "load_chronology_system", &ck::load_chronology_system, py::arg("name"),
-      "A shipped chronology system ('moon_neukum2001', 'mars_neukum_ivanov2001') or a system .toml by path.");
+      "A shipped chronology system (chronology_system_names(): 'moon_neukum2001', 'mars_neukum_ivanov2001', "
+      "'moon_hartmann2010', 'mars_hartmann2005', 'mars_hartmann_daubar2016') or a system .toml by path.");
 }

@@ -66,6 +66,14 @@ if(crater_radius LESS 5 OR crater_radius GREATER 20)
 endif()
 run_installed(aged age ${prefix}/share/craterkit/craters/ryugu_synthetic_unit.scc --params jutzi2022_ryugu
               --body ryugu --cohesion 0.05 --json)
+# The report finds its plotting script under the moved prefix: its figures are drawn, or skipped only for want
+# of matplotlib, never for want of the script.
+run_installed(reported report --radii ${prefix}/share/craterkit/radii/cohesion_size_coarse.csv
+              --out ${SCRATCH}/report --quiet)
+file(READ ${SCRATCH}/report/report.md report_md)
+if(report_md MATCHES "plot_report.py not found" OR NOT EXISTS ${prefix}/share/craterkit/scripts/plot_report.py)
+  fail("the installed report does not find its plotting script:\n${report_md}")
+endif()
 
 foreach(consumer ${CONSUMER_DIR} ${CHRONOLOGY_CONSUMER_DIR})
   get_filename_component(name ${consumer} NAME)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # craterkit run (the main job) on a tiny study of its own: the whole chain runs (sweep, fit, SCI cohesion,
-# rates, ages), its numbers are those the single commands give for the same fitted law (rates, age, scale
-# with --fit), a second run reuses the finished runs and gives the same summary, and bad flags are refused
+# rates, ages: `craterkit report`'s code), its numbers are those the single commands give for the same fitted law
+# (rates, age, scale with --fit), a second run reuses the finished runs and gives the same report.json, and bad
+# flags are refused
 # before anything is written.
 # usage: test_main_job.sh CRATERKIT
 set -u
@@ -24,12 +25,12 @@ TOMLEOF
 
 "$CK" run --study "$WORK/chain.toml" --out "$WORK/out" --jobs 2 --threads 1 >"$WORK/report.txt" 2>"$WORK/err" ||
   fail "the main job exited $?: $(tail -5 "$WORK/err")"
-for f in report.md summary.json fit.json sweep/radii.csv main_job.png; do
+for f in report.md report.json fit.json sweep/radii.csv scaled_radius.png rates.png ages.png; do
   [ -s "$WORK/out/$f" ] || fail "the main job did not write $f"
 done
 grep -q "## Model ages" "$WORK/report.txt" || fail "the printed report has no ages section"
 
-# The summary's numbers against the single commands on the same fit.
+# The report's numbers against the single commands on the same fit.
 "$CK" rates --fit "$WORK/out/fit.json" --cohesion 1,0.05 --diameters 20,40 --json >"$WORK/rates.json" 2>/dev/null ||
   fail "rates --fit on the main job's fit exited $?"
 "$CK" age "$CK_DATA/craters/ryugu_global_hirata2020.csv" --fit "$WORK/out/fit.json" --body ryugu \
@@ -37,17 +38,19 @@ grep -q "## Model ages" "$WORK/report.txt" || fail "the printed report has no ag
 "$CK" scale --fit "$WORK/out/fit.json" --impactor-radius 0.05613 --impactor-density 2700 --velocity 2000 \
   --gravity 1.4e-4 --target-density 1300 --strength 0.2 --json >"$WORK/scale.json" 2>/dev/null ||
   fail "scale --fit on the main job's fit exited $?"
-$PY - "$WORK" <<'PYEOF' || fail "the main job's summary disagrees with rates/age/scale on its own fit"
+$PY - "$WORK" <<'PYEOF' || fail "the main job's report disagrees with rates/age/scale on its own fit"
 import json, math, sys
 w = sys.argv[1]
-s = json.load(open(w + "/out/summary.json"))
+report = json.load(open(w + "/out/report.json"))
+assert len(report["groups"]) == 1 and report["groups"][0]["group"] == {}, "the main job fits every row at once"
+s = report["groups"][0]
 rates = json.load(open(w + "/rates.json"))["rows"]
 for d in (20.0, 40.0):
     single = [r["relative_rate"] for r in rates if r["crater_diameter"] == d and r["cohesion"] == 0.05][0]
     chain = [r["relative_rate"] for r in s["rates"]["rows"] if r["crater_diameter"] == d and r["cohesion"] == 0.05][0]
     assert math.isclose(single, chain, rel_tol=1e-12), (d, single, chain)
 age = json.load(open(w + "/age.json"))["ages"][0]["median_yr"]
-chain_age = [r["median_yr"] for r in s["ages"]["rows"] if r["cohesion"] == 0.5][0]
+chain_age = [r["median_yr"] for r in s["ages"]["units"][0]["rows"] if r["cohesion"] == 0.5][0]
 assert math.isclose(age, chain_age, rel_tol=1e-12), (age, chain_age)
 # SCI: the impactor radius of 2 kg of aluminium, as the main job computes it.
 a = (3 * 2.0 / (4 * math.pi * 2700.0)) ** (1 / 3)
@@ -55,9 +58,11 @@ assert abs(a - 0.05613) < 5e-6
 sci = [r["crater_radius"] for r in s["sci"]["cohesions"] if r["cohesion"] == 0.2][0]
 scale = json.load(open(w + "/scale.json"))["crater_radius"]
 assert math.isclose(sci, scale, rel_tol=1e-3), (sci, scale)
-# The fit's rows are the sweep's table.
-assert s["fit"]["source"].endswith("sweep/radii.csv")
+# The fit's rows are the sweep's table, and fit.json is that fit.
+assert report["tables"][0]["source"].endswith("sweep/radii.csv")
 assert s["fit"]["residual_summary"]["rows"] == 6 and "residuals" not in s["fit"]
+fit_file = json.load(open(w + "/out/fit.json"))
+assert fit_file["parameters"] == s["fit"]["parameters"], (fit_file["parameters"], s["fit"]["parameters"])
 # The cohesion for the observed SCI crater, when there is one, gives that crater under the fitted law.
 y = s["sci"]["cohesion_for_observed_radius"]
 radii = [r["crater_radius"] for r in s["sci"]["cohesions"]]
@@ -66,13 +71,13 @@ if y is None:
     assert radii[0] < 7.25
 PYEOF
 
-# Again: every run is reused, the summary is the same.
-cp "$WORK/out/summary.json" "$WORK/first.json"
+# Again: every run is reused, the report is the same.
+cp "$WORK/out/report.json" "$WORK/first.json"
 "$CK" run --study "$WORK/chain.toml" --out "$WORK/out" --json >"$WORK/second.json" 2>"$WORK/err" ||
   fail "the second main job exited $?"
 grep -q "started" "$WORK/err" && fail "the second main job ran runs again: $(grep started "$WORK/err")"
-cmp -s "$WORK/out/summary.json" "$WORK/first.json" || fail "the second main job changed summary.json"
-cmp -s "$WORK/out/summary.json" <(cat "$WORK/second.json") || fail "--json does not print summary.json"
+cmp -s "$WORK/out/report.json" "$WORK/first.json" || fail "the second main job changed report.json"
+cmp -s "$WORK/out/report.json" <(cat "$WORK/second.json") || fail "--json does not print report.json"
 
 # A dry run lists the runs and writes nothing.
 "$CK" run --study "$WORK/chain.toml" --out "$WORK/dry" --dry-run >"$WORK/dry.txt" 2>"$WORK/err" ||

@@ -38,9 +38,10 @@ for line in "${examples[@]}"; do
     fail "README example '$line' failed: $(cat "$WORK/err")"
   fi
 done
-# What the examples write (fit.json is read by the next example, age.png is the age plot).
+# What the examples write (fit.json is read by the next example, age.png is the age plot, report/ the report).
 [ -s fit.json ] || fail "the fit example wrote no fit.json"
 [ -s age.png ] || fail "the age example wrote no age.png"
+[ -s report/report.md ] || fail "the report example wrote no report/report.md"
 
 # craterkit list: every kind, with the data directory in use.
 "$CK" list >"$WORK/out" 2>"$WORK/err" || fail "craterkit list failed: $(cat "$WORK/err")"

@@ -143,6 +143,52 @@ class Scaling(unittest.TestCase):
             ck.fit({k: v for k, v in columns.items() if k != "velocity"})
 
 
+    def test_grouped_fit_and_its_rate_spread_match_the_program(self):
+        table = os.path.join(DATA, "examples", "radii_groups_example.csv")
+        want = cli("fit", table, "--form", "hh2011", "--fix", "nu=0.4")
+        got = ck.fit_groups(table, form="hh2011", fixed={"nu": 0.4})
+        self.assertEqual(got["group_by"], want["group_by"])
+        self.assertEqual(len(got["groups"]), len(want["groups"]))
+        for g, w in zip(got["groups"], want["groups"]):
+            self.assertEqual(g["key"], w["group"])
+            self.assertEqual(g["regimes"], w["regime_counts"])
+            for name in ("H1", "H2", "mu"):
+                self.assertTrue(close(g["fit"].parameters[name]["value"], w["fit"]["parameters"][name]["value"],
+                                      1e-9), name)
+        self.assertEqual(len(ck.fit_groups(table, form="hh2011", fixed={"nu": 0.4}, group_by=[])["groups"]), 1)
+        with self.assertRaisesRegex(ValueError, "colour"):
+            ck.fit_groups(table, group_by="colour")
+        # a group's law from the grouped JSON, and the law's uncertainty in relative rates as
+        # `rates --fit --group --samples --seed`
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "fit.json")
+            with open(path, "w") as f:
+                f.write(got["json"])
+            group = "friction=0.8,porosity=0.5,resolution=18"
+            law, _ = ck.load_fit(path, group=group)
+            self.assertTrue(close(law.coefficient_1, got["groups"][1]["fit"].law.coefficient_1, 1e-15))
+            want = cli("rates", "--fit", path, "--group", group, "--body", "ryugu", "--cohesion", "0.05,1",
+                       "--diameters", "22,36", "--samples", 300, "--seed", 5)
+            laws = ck.sample_laws(path, samples=300, seed=5, group=group)
+            weak, strong = (ck.Production(law, cohesion=y, body="ryugu") for y in (0.05, 1.0))
+            diameters = np.array([22.0, 36.0])
+            spread = ck.relative_rate_spread(weak, strong, laws, diameters)
+            checked = 0
+            for row in want["rows"]:
+                if row["cohesion"] != 1.0:
+                    continue
+                i = list(diameters).index(row["crater_diameter"])
+                u = row["scaling_law_uncertainty"]
+                for k, q in enumerate(("p16", "p50", "p84")):
+                    self.assertTrue(close(spread["ratio"][k][i], u["relative_rate"][q], 1e-12), q)
+                    self.assertTrue(close(spread["impactor_radius_b"][k][i], u["impactor_radius"][q], 1e-12), q)
+                    self.assertTrue(close(spread["rate_b"][k][i] * 1e6, u["production_rate_per_km2_per_yr"][q],
+                                          1e-12), q)
+                checked += 1
+            self.assertEqual(checked, 2)
+            self.assertTrue(np.all(spread["ratio"][0] < spread["ratio"][2]))
+
+
 class Chronology(unittest.TestCase):
     def test_bodies_and_populations(self):
         self.assertEqual(ck.body_names(), ["bennu", "ryugu"])
@@ -241,6 +287,21 @@ class Chronology(unittest.TestCase):
                            prior="density")
         self.assertTrue(close(got.median, want["ages"][0]["median_yr"]))
         self.assertTrue(math.isclose(got.median / 1e9, 0.81299883, rel_tol=6e-3))  # craterstats 3.6.10
+        # a system whose production function is Hartmann's table (tabular incremental root-2)
+        mars = ck.load_chronology_system("mars_hartmann2005")
+        self.assertIn("mars_hartmann_daubar2016", ck.chronology_system_names())
+        self.assertEqual(mars.production_form, "tabular_incremental_root2")
+        self.assertEqual((len(mars.incremental_density), mars.index_1km, len(mars.production_coefficients)),
+                         (36, 16, 0))
+        self.assertEqual(moon.production_form, "polynomial")
+        # craterstats 3.6.10: Productionfn('Mars, Hartmann (2005)').C(3.7, Chronologyfn(...).a0(3.0))
+        self.assertTrue(close(float(mars.cumulative_density(3700.0, 3e9)), 1.5021119133634729e-4, 1e-12))
+        want = cli("age", unit, "--chronology", "mars_hartmann2005", "--min-diameter", 200, "--max-diameter", 1000,
+                   "--fractions", "whole", "--prior", "density")
+        got = ck.model_age(ck.read_counts(unit), mars, min_diameter=200, max_diameter=1000, fractions="whole",
+                           prior="density")
+        self.assertTrue(close(got.median, want["ages"][0]["median_yr"]))
+        self.assertTrue(math.isclose(got.median / 1e9, 1.7215997, rel_tol=6e-3))  # craterstats 3.6.10
         with self.assertRaisesRegex(ValueError, "allowed: weight, whole"):
             ck.model_age(partial, production, fractions="half")
 

@@ -66,7 +66,8 @@ IdealGas read_ideal_gas(TomlTable& eos) {
 }
 
 // [strength] model = "lundborg": cohesion, friction_coefficient or repose_angle_degrees (exactly one),
-// limiting_strength above the cohesion.
+// limiting_strength above the cohesion, weakening_strain ("total", the default; "plastic_after_switch";
+// "plastic").
 LundborgStrength read_lundborg(TomlTable& strength) {
   LundborgStrength law{};
   law.cohesion = strength.required_number("cohesion", 0.0, inf);
@@ -87,6 +88,10 @@ LundborgStrength read_lundborg(TomlTable& strength) {
   } else {
     strength.accept("limiting_strength");
   }
+  const std::string weakening =
+      strength.text("weakening_strain", "total", {"total", "plastic_after_switch", "plastic"});
+  if (weakening == "plastic_after_switch") law.weakening_strain = WeakeningStrain::plastic_after_switch;
+  if (weakening == "plastic") law.weakening_strain = WeakeningStrain::plastic;
   if (!(law.limiting_strength > law.cohesion)) {  // the default 3.5 GPa against a larger cohesion
     strength.out_of_range("cohesion", law.cohesion,
                           "< limiting_strength = " + format_number(law.limiting_strength) + " (its default)");

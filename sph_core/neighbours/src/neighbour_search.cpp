@@ -39,6 +39,15 @@ template <bool Periodic>
   return gap;
 }
 
+// Room to grow of a kept list's slot (update(): moved particles add themselves to the lists of their new
+// neighbours): an eighth of the list and two entries. Every particle holds its room through all substeps,
+// while inserts are few between restructures (at least every sort interval); a list that outgrows its slot
+// moves to the end of the array. A quarter and four entries cost about 60 bytes per particle more on the SCI
+// example (bench/RESULTS.md).
+constexpr std::uint64_t slot_room(std::uint64_t count) {
+  return count / 8 + 2;
+}
+
 // Resizes a build buffer to `size` without letting std::vector double its capacity (resize alone would:
 // with mirror images the buffers first hold the n particles, then n plus the images). `slack` extra
 // capacity absorbs the small changes of the image count between builds without reallocating each time.
@@ -77,6 +86,14 @@ std::size_t NeighbourSearch::workspace_bytes() const {
   for (const auto& t : scratch_)
     bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
   return bytes;
+}
+
+void NeighbourSearch::release_build_buffers() {
+  const auto release = [](auto& v) { std::remove_reference_t<decltype(v)>().swap(v); };
+  release(keyed_);
+  release(group_of_);
+  release(candidate_offsets_);
+  release(candidates_);
 }
 
 void NeighbourSearch::release_workspace() {
@@ -649,7 +666,7 @@ void NeighbourSearch::build(const NeighbourInput& input, const Box& box, Neighbo
   built_ = true;
 }
 
-// Each list sorted by entry, in a slot with room for a quarter more (moved particles add themselves to the
+// Each list sorted by entry, in a slot with room to grow (slot_room; moved particles add themselves to the
 // lists of their new neighbours). The lists are collected packed into the lists' own array and then spread
 // into their slots in place, last list first (a slot starts at or after its packed list, and every list
 // before it is still where it was collected): no second copy of the lists is held.
@@ -675,10 +692,19 @@ void NeighbourSearch::restructure(const NeighbourInput& input, const Box& box, N
   std::uint64_t slots = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint64_t count = lists.offsets[i + 1] - lists.offsets[i];
-    slots += count + count / 4 + 4;
+    slots += count + slot_room(count);
     slot_end_[i] = slots;
   }
-  if (lists.neighbours.capacity() < slots) lists.neighbours.reserve(slots + slots / 8);
+  // Room for the slots that move before the next restructure: a sixteenth more. A capacity much beyond that,
+  // left by an earlier layout with longer lists or by moved slots, is given back rather than held for the
+  // rest of the run (the packed lists are copied once, at a restructure).
+  const std::uint64_t wanted = slots + slots / 16;
+  if (lists.neighbours.capacity() < slots || lists.neighbours.capacity() > wanted + wanted / 8) {
+    std::vector<std::uint32_t> resized;
+    resized.reserve(wanted);
+    resized.assign(lists.neighbours.begin(), lists.neighbours.begin() + std::ptrdiff_t(lists.offsets[n]));
+    lists.neighbours.swap(resized);
+  }
   lists.neighbours.resize(slots);
   std::uint32_t* entries = lists.neighbours.data();
   for (std::size_t i = n; i-- > 0;) {
@@ -712,6 +738,11 @@ void NeighbourSearch::restructure(const NeighbourInput& input, const Box& box, N
       image_rank_[image_start_[i] + m] = std::uint32_t(k);
     }
   }
+  // The sort keys, the sorted index -> group map and the candidate groups serve only the collection of the
+  // lists; the calls until the next restructure search the tree from the anchors and read none of them.
+  // Freed here, they are no longer held through the substeps (about 25 bytes per particle with images); the
+  // next restructure, at most every sort interval, allocates them again.
+  release_build_buffers();
   kept_ = true;
 }
 
@@ -870,9 +901,12 @@ void NeighbourSearch::search_anchor(std::uint32_t i, const Box& box, std::vector
 // Moves list i to a new slot at the end of the array with room for `room` entries.
 void NeighbourSearch::move_slot(NeighbourLists& lists, std::size_t i, std::size_t room) {
   const std::uint64_t count = lists.count(i);
-  const std::uint64_t capacity = std::max<std::uint64_t>(room, count) + count / 4 + 4;
+  const std::uint64_t capacity = std::max<std::uint64_t>(room, count) + slot_room(count);
   const std::uint64_t start = lists.neighbours.size();
-  if (lists.neighbours.capacity() < start + capacity) lists.neighbours.reserve(2 * (start + capacity));
+  // Grown by an eighth, not doubled: the array holds every list, and a doubling would be held until the next
+  // restructure gives it back.
+  const std::uint64_t size = start + capacity;
+  if (lists.neighbours.capacity() < size) lists.neighbours.reserve(size + size / 8);
   lists.neighbours.resize(start + capacity);
   std::copy(lists.neighbours.begin() + std::ptrdiff_t(lists.offsets[i]),
             lists.neighbours.begin() + std::ptrdiff_t(lists.ends[i]),

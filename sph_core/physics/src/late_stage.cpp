@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <variant>
 
 #include "craterkit/common/input_error.hpp"
 
@@ -27,6 +28,11 @@ Material late_stage_material(const Material& material, double A_low) {
   Material out = material;
   out.eos = LowSoundSpeed{reference->density, A_low};
   out.shear_modulus = material.shear_modulus * stiffness_factor;
+  if (out.strength) {
+    auto* law = std::get_if<LundborgStrength>(&*out.strength);
+    if (law != nullptr && law->weakening_strain == WeakeningStrain::plastic_after_switch)
+      law->weakening_strain = WeakeningStrain::plastic;
+  }
   if (out.porosity) {
     out.porosity->porous_sound_speed *= speed_factor;
     // Exactly sqrt(A_low/rho0), the reference sound speed of the new law (not a rounded product).

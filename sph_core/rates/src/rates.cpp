@@ -2,11 +2,14 @@
 
 #include "craterkit/sph/rates/artificial_stress.hpp"
 #include "craterkit/sph/rates/gradient_correction.hpp"
+#include "craterkit/sph/rates/stress_rates.hpp"
 #include "pair_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 
 namespace craterkit::sph {
 
@@ -94,7 +97,8 @@ struct RelativeVelocity {
   return {i.vx - image.vector(0, f.vx[j]), i.vy - image.vector(1, f.vy[j]), i.vz - image.vector(2, f.vz[j])};
 }
 
-// Pressure force, artificial viscosity, continuity and energy of one pair (rates.hpp; docs/physics.md section 1).
+// Pressure force, artificial viscosity, continuity and energy of one pair (rates.hpp; docs/physics.md section
+// 1).
 template <bool solid>
 [[gnu::always_inline]] inline void fluid_pair(const FluidParticle& i, const FluidFields& f,
                                               const Viscosity& av, const PairGeometry& pair,
@@ -296,20 +300,30 @@ SolidFields stress_force_pass(const Particles& p, const RateOptions& options, Ra
 
 // Solids, after the j-loop: this evaluation's L_i from M, written over the stored one (the pair loop
 // reads the stored L only through B, so no particle sees a neighbour's new L), and the corrected velocity
-// gradient G . L_i (Randles & Libersky 1996) for the stress rate; L_i is the force's in the next
-// evaluation (gradient_correction.hpp).
-[[gnu::always_inline]] inline void store_correction(std::size_t i, const SolidSums& solid,
+// gradient G . L_i (Randles & Libersky 1996) for the stress rate, stored in `gradients` or, with
+// `stress_inputs`, turned into the stress rates of i at once (store_stress_rate); L_i is the force's in the
+// next evaluation (gradient_correction.hpp).
+[[gnu::always_inline]] inline void store_correction(Particles& p, std::size_t i, const SolidSums& solid,
                                                     const std::array<double*, 6>& correction,
-                                                    VelocityGradients* gradients) {
+                                                    VelocityGradients* gradients,
+                                                    const StressRateInputs* stress_inputs) {
   const std::array<double, 6> L = correction_matrix(solid.M);
   for (int k = 0; k < 6; ++k) correction[k][i] = L[k];
-  if (gradients != nullptr) {
+  if (gradients != nullptr || stress_inputs != nullptr) {
     const double* G = solid.G;
     const double Lm[9] = {L[0], L[1], L[2], L[1], L[3], L[4], L[2], L[4], L[5]};
+    Tensor3 corrected{};
     for (int a = 0; a < 3; ++a) {
       for (int b = 0; b < 3; ++b) {
-        gradients->corrected[3 * a + b][i] =
-            G[3 * a] * Lm[b] + G[3 * a + 1] * Lm[3 + b] + G[3 * a + 2] * Lm[6 + b];
+        corrected[a][b] = G[3 * a] * Lm[b] + G[3 * a + 1] * Lm[3 + b] + G[3 * a + 2] * Lm[6 + b];
+      }
+    }
+    if (stress_inputs != nullptr) {
+      store_stress_rate(p, i, corrected, stress_inputs->shear_modulus[i],
+                        stress_inputs->materials[p.material[i]]);
+    } else {
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) gradients->corrected[3 * a + b][i] = corrected[a][b];
       }
     }
   }
@@ -320,7 +334,7 @@ SolidFields stress_force_pass(const Particles& p, const RateOptions& options, Ra
 template <class Kernel, bool solid, bool mirrored, bool artificial_stress = false>
 RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
                        RateWorkspace& workspace, VelocityGradients* gradients,
-                       const ParticleSelection& selection) {
+                       const ParticleSelection& selection, const StressRateInputs* stress_inputs) {
   static_assert(solid || !artificial_stress);
   const auto n = static_cast<std::int64_t>(selection.size());
   const PairFrame frame = detail::pair_frame(p, options.period, options.mirror);
@@ -390,6 +404,10 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
       drho_out[i] = du_out[i] = dalpha_out[i] = 0.0;
       neighbour_count[i] = 0;
       signal_time[i] = inf;
+      if constexpr (solid) {
+        if (stress_inputs != nullptr)  // compute_stress_rates' zeros
+          store_stress_rate(p, i, Tensor3{}, 0.0, stress_inputs->materials[p.material[i]]);
+      }
       continue;
     }
     const PairCentre centre = detail::pair_centre(frame, i);
@@ -419,7 +437,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
     drho_out[i] = fluid_i.rho * sum.vv_grad;
     if constexpr (solid) {
       du_out[i] = solid_sum.work + 0.5 * sum.viscous;
-      store_correction(i, solid_sum, correction, gradients);
+      store_correction(p, i, solid_sum, correction, gradients, stress_inputs);
     } else {
       du_out[i] = fluid_i.pr2 * sum.mv_grad + 0.5 * sum.viscous;
     }
@@ -474,26 +492,56 @@ RateSummary compute_rates(Particles& particles, const PairList& pairs, const Rat
                        gradients);
 }
 
-RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
-                          RateWorkspace& workspace, const ParticleSelection& selection,
-                          VelocityGradients* gradients) {
-  if (gradients != nullptr) gradients->resize(particles.size());
+namespace {
+
+RateSummary dispatch_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                           RateWorkspace& workspace, const ParticleSelection& selection,
+                           VelocityGradients* gradients, const StressRateInputs* stress_inputs) {
   return with_kernel(options.kernel, [&](auto kernel) {
     using K = decltype(kernel);
     const bool artificial = options.solid && options.artificial_stress.on();
     if (options.mirror.any()) {
-      if (artificial)
-        return rates_impl<K, true, true, true>(particles, pairs, options, workspace, gradients, selection);
-      return options.solid
-                 ? rates_impl<K, true, true>(particles, pairs, options, workspace, gradients, selection)
-                 : rates_impl<K, false, true>(particles, pairs, options, workspace, gradients, selection);
+      if (artificial) {
+        return rates_impl<K, true, true, true>(particles, pairs, options, workspace, gradients, selection,
+                                               stress_inputs);
+      }
+      return options.solid ? rates_impl<K, true, true>(particles, pairs, options, workspace, gradients,
+                                                       selection, stress_inputs)
+                           : rates_impl<K, false, true>(particles, pairs, options, workspace, gradients,
+                                                        selection, stress_inputs);
     }
-    if (artificial)
-      return rates_impl<K, true, false, true>(particles, pairs, options, workspace, gradients, selection);
-    return options.solid
-               ? rates_impl<K, true, false>(particles, pairs, options, workspace, gradients, selection)
-               : rates_impl<K, false, false>(particles, pairs, options, workspace, gradients, selection);
+    if (artificial) {
+      return rates_impl<K, true, false, true>(particles, pairs, options, workspace, gradients, selection,
+                                              stress_inputs);
+    }
+    return options.solid ? rates_impl<K, true, false>(particles, pairs, options, workspace, gradients,
+                                                      selection, stress_inputs)
+                         : rates_impl<K, false, false>(particles, pairs, options, workspace, gradients,
+                                                       selection, stress_inputs);
   });
+}
+
+}  // namespace
+
+RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
+                          RateWorkspace& workspace, const ParticleSelection& selection,
+                          VelocityGradients* gradients) {
+  if (gradients != nullptr) gradients->resize(particles.size());
+  return dispatch_rates(particles, pairs, options, workspace, selection, gradients, nullptr);
+}
+
+RateSummary compute_rates_and_stress_rates(Particles& particles, const PairList& pairs,
+                                           const RateOptions& options, RateWorkspace& workspace,
+                                           const ParticleSelection& selection,
+                                           std::span<const double> shear_modulus,
+                                           std::span<const Material> materials) {
+  if (options.solid && shear_modulus.size() != particles.size()) {
+    throw std::invalid_argument("compute_rates_and_stress_rates: " + std::to_string(shear_modulus.size()) +
+                                " shear moduli for " + std::to_string(particles.size()) + " particles");
+  }
+  const StressRateInputs stress{shear_modulus.data(), materials.data()};
+  return dispatch_rates(particles, pairs, options, workspace, selection, nullptr,
+                        options.solid ? &stress : nullptr);
 }
 
 }  // namespace craterkit::sph

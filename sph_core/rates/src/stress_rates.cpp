@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "craterkit/sph/physics/deviatoric_stress.hpp"
 #include "craterkit/sph/physics/material_response.hpp"
@@ -68,30 +69,19 @@ void update_material_state(Particles& p, std::span<const Material> materials, Ra
   }
 }
 
-void compute_stress_rates(Particles& p, const VelocityGradients& gradients,
-                          std::span<const double> shear_modulus, const ParticleSelection& selection) {
+void compute_stress_rates(Particles& p, std::span<const Material> materials,
+                          const VelocityGradients& gradients, std::span<const double> shear_modulus,
+                          const ParticleSelection& selection) {
   const auto n = static_cast<std::int64_t>(selection.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
     const auto i = selection.at(static_cast<std::size_t>(ii));
-    const double G = shear_modulus[i];
-    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0 || !(G > 0.0)) {
-      p.stress_rate_xx[i] = p.stress_rate_xy[i] = p.stress_rate_xz[i] = 0.0;
-      p.stress_rate_yy[i] = p.stress_rate_yz[i] = p.total_strain_rate[i] = 0.0;
-      continue;
-    }
+    const bool moving = (p.flags[i] & (particle_fixed | particle_ejected)) == 0;
     Tensor3 L{};
     for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) L[a][b] = gradients.corrected[3 * a + b][i];
+      for (int b = 0; b < 3; ++b) L[a][b] = moving ? gradients.corrected[3 * a + b][i] : 0.0;
     }
-    const DeviatoricStress rate = jaumann_stress_rate(
-        {p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i], p.stress_yz[i]}, L, G);
-    p.stress_rate_xx[i] = rate.xx;
-    p.stress_rate_xy[i] = rate.xy;
-    p.stress_rate_xz[i] = rate.xz;
-    p.stress_rate_yy[i] = rate.yy;
-    p.stress_rate_yz[i] = rate.yz;
-    p.total_strain_rate[i] = deviatoric_strain_rate_invariant(L);
+    store_stress_rate(p, i, L, moving ? shear_modulus[i] : 0.0, materials[p.material[i]]);
   }
 }
 

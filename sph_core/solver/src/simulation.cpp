@@ -243,9 +243,12 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
   update_equation_of_state(state_for);
   {
     auto scope = timers_.measure("rates");
-    rate_summary_ = compute_rates(p, PairList{lists_.offsets, lists_.neighbours, lists_.ends}, rate_options_,
-                                  rate_workspace_, rates_for, rate_options_.solid ? &gradients_ : nullptr);
-    if (rate_options_.solid) compute_stress_rates(p, gradients_, shear_modulus_, rates_for);
+    const PairList pairs{lists_.offsets, lists_.neighbours, lists_.ends};
+    // Solids: the pair pass writes the stress rates itself, so that no velocity gradient is held.
+    rate_summary_ = rate_options_.solid
+                        ? compute_rates_and_stress_rates(p, pairs, rate_options_, rate_workspace_, rates_for,
+                                                         shear_modulus_, problem_.materials)
+                        : compute_rates(p, pairs, rate_options_, rate_workspace_, rates_for);
     if (porous_) compute_distention_rates(p, problem_.materials, rates_for);
   }
 }
@@ -496,7 +499,6 @@ double Simulation::bytes_per_particle() const {
         &w.stress_rate_yz, &w.total_strain_rate, &w.distention_rate, &w.distention, &shear_modulus_}) {
     bytes += v->capacity() * sizeof(double);
   }
-  for (const auto& v : gradients_.corrected) bytes += v.capacity() * sizeof(double);
   for (const auto& v : rate_workspace_.stress_force) bytes += v.capacity() * sizeof(double);
   bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
   bytes += rate_workspace_.volume.capacity() * sizeof(double);

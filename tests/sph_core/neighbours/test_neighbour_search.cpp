@@ -356,6 +356,40 @@ TEST(NeighbourSearch, KeptListsAreHeldOnce) {
   EXPECT_LT(double(lists.bytes()), 1.6 * entry_bytes) << "slots with a quarter more room, plus a little";
 }
 
+// What the kept lists and their search hold between restructures: slots with an eighth more room (and two
+// entries) in an array with a sixteenth more for moved slots, and none of the buffers that only the
+// collection of the lists reads (sort keys, sorted index -> group, candidate groups: at least 20 bytes per
+// particle that a build() keeps). Particles that move afterwards are still found.
+TEST(NeighbourSearch, KeptListsHoldLittleRoomAndNoBuildBuffers) {
+  Cloud c = random_cloud(4000, 0.07, 0.08, 0.0, 13);
+  NeighbourSearchOptions options;
+  options.skin = 0.1;
+  NeighbourSearch kept(options), built(options);
+  NeighbourLists lists, packed;
+  kept.update(c.input(), Box{}, lists, true);
+  built.build(c.input(), Box{}, packed);
+  const double n = double(c.x.size());
+  const double entry_bytes = double(lists.total()) * sizeof(std::uint32_t);
+  ASSERT_GT(lists.total(), 40u * c.x.size());
+  // Offsets and ends 16 bytes, two entries and a sixteenth of the array 8.5 bytes per particle: 1.2 times the
+  // entries and 24.5 bytes per particle (a quarter more room and four entries in an eighth more: 1.41 and
+  // 34).
+  EXPECT_LT(double(lists.bytes()), 1.25 * entry_bytes + 24.0 * n);
+  // The kept search holds its slot ends (8 bytes per particle) and no keys or candidates.
+  EXPECT_LT(double(kept.workspace_bytes()) + 20.0 * n, double(built.workspace_bytes()) + 8.0 * n);
+  // Moved particles are searched again with the released buffers gone, and the lists stay exact supersets.
+  for (std::size_t i = 0; i < c.x.size(); i += 7) c.x[i] += 0.02;  // beyond the skin 0.1 h
+  kept.update(c.input(), Box{}, lists, false);
+  EXPECT_EQ(kept.restructures(), 1u);
+  const NeighbourLists exact = NeighbourSearch().build(c.input(), Box{});
+  for (std::size_t i = 0; i < c.x.size(); ++i) {
+    const auto have = lists.of(i);
+    for (const std::uint32_t j : exact.of(i)) {
+      ASSERT_NE(std::find(have.begin(), have.end(), j), have.end()) << i << " misses " << j;
+    }
+  }
+}
+
 TEST(NeighbourSearch, MinimumImageAndWrap) {
   const Box box{{-1, 0, 0}, {1, 10, 1}, {true, false, true}};
   EXPECT_DOUBLE_EQ(minimum_image(box, 0, 1.5), -0.5);

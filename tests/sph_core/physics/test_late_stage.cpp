@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "craterkit/common/input_error.hpp"
@@ -68,6 +69,7 @@ TEST(LateStage, StrengthAndCrushCurveUnchangedPorousSpeedsScaled) {
   EXPECT_EQ(s1.cohesion, s0.cohesion);
   EXPECT_EQ(s1.friction_coefficient, s0.friction_coefficient);
   EXPECT_EQ(s1.limiting_strength, s0.limiting_strength);
+  EXPECT_EQ(s1.weakening_strain, WeakeningStrain::total);
   const auto& p0 = before.porosity->crush_curve;
   const auto& p1 = after.porosity->crush_curve;
   EXPECT_EQ(p1.initial_distention, p0.initial_distention);
@@ -80,6 +82,20 @@ TEST(LateStage, StrengthAndCrushCurveUnchangedPorousSpeedsScaled) {
   for (double alpha : {1.0, 1.4, 2.0}) {  // h(alpha) is the same function of alpha before and after
     EXPECT_NEAR(porous_sound_speed_factor(*after.porosity, alpha),
                 porous_sound_speed_factor(*before.porosity, alpha), 1e-12);
+  }
+}
+
+// weakening_strain = "plastic_after_switch" counts the plastic strain from the switch on; the others keep
+// theirs.
+TEST(LateStage, PlasticAfterSwitchCountsThePlasticStrainFromTheSwitchOn) {
+  Material boulder = load_material("boulder");
+  for (const auto& [before, after] :
+       {std::pair{WeakeningStrain::total, WeakeningStrain::total},
+        std::pair{WeakeningStrain::plastic_after_switch, WeakeningStrain::plastic},
+        std::pair{WeakeningStrain::plastic, WeakeningStrain::plastic}}) {
+    std::get<LundborgStrength>(*boulder.strength).weakening_strain = before;
+    const Material switched = late_stage_material(boulder, kALow);
+    EXPECT_EQ(std::get<LundborgStrength>(*switched.strength).weakening_strain, after);
   }
 }
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/sph/io/material_file.hpp"
@@ -26,6 +27,7 @@ using craterkit::sph::Material;
 using craterkit::sph::material_names;
 using craterkit::sph::Tillotson;
 using craterkit::sph::VonMisesStrength;
+using craterkit::sph::WeakeningStrain;
 
 TEST(Material, BasaltMatchesPhysicsTable) {
   const auto m = load_material("basalt");
@@ -288,6 +290,19 @@ TEST_F(BadMaterialFile, StrengthAndPorosityBlocksLoad) {
   EXPECT_EQ(m.porosity->porous_sound_speed, 1500.0);
   EXPECT_NEAR(m.porosity->matrix_sound_speed, 3144.660377352201, 1e-9);  // sqrt(26.7e9/2700)
 
+  EXPECT_EQ(s.weakening_strain, WeakeningStrain::total);  // the published model
+  for (const auto& [text, value] : {std::pair{"total", WeakeningStrain::total},
+                                    std::pair{"plastic_after_switch", WeakeningStrain::plastic_after_switch},
+                                    std::pair{"plastic", WeakeningStrain::plastic}}) {
+    ASSERT_EQ(error_of(valid_tillotson() + lundborg("friction_coefficient = 0.6\nweakening_strain = \"" +
+                                                    std::string(text) + "\"\n")),
+              "");
+    EXPECT_EQ(std::get<LundborgStrength>(load_material((directory_ / "rock.toml").string()).strength.value())
+                  .weakening_strain,
+              value)
+        << text;
+  }
+
   ASSERT_EQ(error_of(valid_tillotson() + "[strength]\nmodel = \"von_mises\"\nyield_strength = 2e8\n"), "");
   EXPECT_EQ(std::get<VonMisesStrength>(load_material((directory_ / "rock.toml").string()).strength.value())
                 .yield_strength,
@@ -317,6 +332,8 @@ TEST_F(BadMaterialFile, MalformedStrengthIsNamed) {
                   {"strength.repose_angle_degrees", "strength.friction_coefficient", "exactly one"});
   expect_mentions(error_of(base + lundborg("")),
                   {"strength.friction_coefficient", "missing", "repose_angle_degrees"});
+  expect_mentions(error_of(base + lundborg("friction_coefficient = 0.5\nweakening_strain = \"elastic\"\n")),
+                  {"strength.weakening_strain", "elastic", "plastic_after_switch"});
   expect_mentions(error_of(base + lundborg("repose_angle_degrees = 95\n")),
                   {"strength.repose_angle_degrees", "95", "(0, 90)"});
   expect_mentions(error_of(base + lundborg("friction_coefficient = -0.1\n")),

@@ -190,4 +190,42 @@ TEST(Strength, DeviatoricStrainRateInvariantIgnoresVolumeChange) {
   EXPECT_NEAR(deviatoric_strain_rate_invariant(uniaxial), 0.6 / std::sqrt(3.0), 1e-14);
 }
 
+// The plastic strain rate of a stress on the yield surface equals what a radial return removes per unit
+// time: (sqrt(J2_trial) - Y) / (2 G) / dt for the elastic trial step S + dt dS/dt from the surface.
+TEST(Strength, PlasticStrainRateIsWhatTheRadialReturnRemoves) {
+  // sqrt(J2) of the stress below is 650 Pa; the trial step differs from the rate by O(G dt / Y) relative.
+  const double y = 500.0, dt = 1e-9;
+  Tensor3 L{};  // a general gradient: shear, stretch and spin
+  L[0][0] = 0.013;
+  L[0][1] = 0.021;
+  L[1][0] = -0.004;
+  L[1][1] = -0.007;
+  L[1][2] = 0.011;
+  L[2][0] = 0.006;
+  L[2][2] = 0.002;
+  const DeviatoricStress on_surface = radial_return({300.0, 500.0, -200.0, -100.0, 250.0}, y);
+  const auto rate = jaumann_stress_rate(on_surface, L, kShearModulus);
+  const DeviatoricStress trial{on_surface.xx + dt * rate.xx, on_surface.xy + dt * rate.xy,
+                               on_surface.xz + dt * rate.xz, on_surface.yy + dt * rate.yy,
+                               on_surface.yz + dt * rate.yz};
+  const double removed_per_time = (std::sqrt(second_invariant(trial)) - y) / (2.0 * kShearModulus) / dt;
+  const double plastic = plastic_strain_rate_at_yield(on_surface, L);
+  ASSERT_GT(removed_per_time, 0.0);
+  EXPECT_NEAR(plastic, removed_per_time, 1e-5 * removed_per_time);
+  // Never more than the total strain rate (Cauchy-Schwarz), equal to it for a flow along S.
+  EXPECT_LE(plastic, deviatoric_strain_rate_invariant(L));
+  Tensor3 along{};
+  const Tensor3 S = on_surface.full();
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) along[a][b] = 1e-4 * S[a][b];
+  EXPECT_NEAR(plastic_strain_rate_at_yield(on_surface, along), deviatoric_strain_rate_invariant(along),
+              1e-12 * deviatoric_strain_rate_invariant(along));
+  // Unloading (the reverse gradient) and a stress-free state accumulate nothing.
+  Tensor3 reverse{};
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) reverse[a][b] = -L[a][b];
+  EXPECT_EQ(plastic_strain_rate_at_yield(on_surface, reverse), 0.0);
+  EXPECT_EQ(plastic_strain_rate_at_yield({}, L), 0.0);
+}
+
 }  // namespace

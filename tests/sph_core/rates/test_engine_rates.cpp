@@ -7,12 +7,17 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <string_view>
+#include <type_traits>
 #include <vector>
 
-#include "craterkit/sph/rates/gradient_correction.hpp"
+#include "craterkit/sph/io/material_file.hpp"
 #include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/rates/gradient_correction.hpp"
 #include "craterkit/sph/rates/rates.hpp"
+#include "craterkit/sph/rates/stress_rates.hpp"
 #include "craterkit/sph/rates/summation_density.hpp"
 
 using namespace craterkit::sph;
@@ -425,4 +430,56 @@ TEST(Rates, PeriodicLatticeIsTranslationInvariant) {
   }
   EXPECT_NEAR(static_cast<double>(c.lists.total()) / c.p.size(), 4.0 / 3.0 * 3.14159265 * std::pow(2.4, 3),
               8.0);
+}
+
+// The solver takes the stress rates from the pair pass (compute_rates_and_stress_rates) and holds no velocity
+// gradient: every rate must be the same bits as the pass that stores the gradient followed by
+// compute_stress_rates, for all particles and for a selection (block time steps), fixed particles included.
+TEST(Rates, StressRatesFromThePairPassEqualThoseFromTheStoredGradient) {
+  Cloud stored = random_cloud(9, 11, 0.3, true);
+  for (std::size_t i = 0; i < stored.p.size(); i += 17) stored.p.flags[i] = particle_fixed;
+  std::vector<double> shear_modulus(stored.p.size());
+  for (std::size_t i = 0; i < shear_modulus.size(); ++i)
+    shear_modulus[i] = i % 23 == 5 ? 0.0 : 2.0 + 0.001 * double(i);
+  // Every other particle counts the plastic strain (store_stress_rate's other branch).
+  const Material total = load_material("boulder");
+  Material plastic = total;
+  std::get<LundborgStrength>(*plastic.strength).weakening_strain = WeakeningStrain::plastic;
+  const std::vector<Material> materials{total, plastic};
+  for (std::size_t i = 0; i < stored.p.size(); ++i) stored.p.material[i] = static_cast<std::uint16_t>(i % 2);
+  RateOptions options;
+  options.solid = true;
+  options.viscosity.viscosity_switch = ViscositySwitch::morris_monaghan;
+  options.viscosity.balsara = true;
+  std::vector<std::uint32_t> listed;
+  for (std::uint32_t i = 0; i < stored.p.size(); i += 3) listed.push_back(i);
+  for (const ParticleSelection& selection :
+       {ParticleSelection::all(stored.p.size()), ParticleSelection::listed(listed)}) {
+    Cloud fused = stored;
+    const PairList stored_pairs{stored.lists.offsets, stored.lists.neighbours};
+    const PairList fused_pairs{fused.lists.offsets, fused.lists.neighbours};
+    VelocityGradients g;
+    const RateSummary a = compute_rates(stored.p, stored_pairs, options, stored.workspace, selection, &g);
+    compute_stress_rates(stored.p, materials, g, shear_modulus, selection);
+    const RateSummary b = compute_rates_and_stress_rates(fused.p, fused_pairs, options, fused.workspace,
+                                                         selection, shear_modulus, materials);
+    EXPECT_EQ(a.min_signal_time, b.min_signal_time);
+    EXPECT_EQ(a.interacting_pairs, b.interacting_pairs);
+    std::size_t compared = 0;
+    stored.p.for_each_field([&](std::string_view name, const auto& field) {
+      fused.p.for_each_field([&](std::string_view other, const auto& other_field) {
+        if (name != other) return;
+        ASSERT_EQ(field.size(), other_field.size()) << name;
+        for (std::size_t i = 0; i < field.size(); ++i) {
+          if constexpr (std::is_same_v<std::decay_t<decltype(field)>, std::decay_t<decltype(other_field)>>) {
+            ASSERT_EQ(std::memcmp(&field[i], &other_field[i], sizeof(field[i])), 0)
+                << name << " of particle " << i;
+          }
+        }
+        ++compared;
+      });
+    });
+    EXPECT_GT(compared, 40u);
+    EXPECT_NE(stored.p.stress_rate_xx[1], 0.0);  // the stress rates were written
+  }
 }

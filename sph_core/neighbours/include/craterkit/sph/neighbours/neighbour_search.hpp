@@ -27,8 +27,8 @@
 //
 // Algorithm: a Morton octree with per-node bounding boxes and maximum h (robust for widely varying h and
 // for particles thrown far away), OpenMP-parallel and allocation-free in steady state (buffers are kept
-// across rebuilds). A sparse cell list was measured 15-20 % slower, and far slower with a wide spread of
-// h, and removed (bench/RESULTS_neighbours.md).
+// across rebuilds; update() frees the few that only its restructures read, see there). A sparse cell list was
+// measured 15-20 % slower, and far slower with a wide spread of h, and removed (bench/RESULTS_neighbours.md).
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -89,6 +89,9 @@ struct NeighbourInput {
 
 // Holds the work buffers (sorted copies of positions and h, octree, candidate lists, per-thread overflow)
 // between rebuilds, so a rebuild allocates nothing once the particle count and neighbour counts are stable.
+// update() is the exception: after a restructure it frees the sort keys, the sorted index -> group map and
+// the candidate groups, which the calls until the next restructure do not read (about 36 bytes per particle
+// on the SCI example), and the next restructure allocates them again.
 class NeighbourSearch {
  public:
   explicit NeighbourSearch(NeighbourSearchOptions options = {});
@@ -194,6 +197,7 @@ class NeighbourSearch {
   template <bool Periodic>
   void search_anchor(std::uint32_t i, const Box& box, std::vector<std::uint32_t>& out) const;
   void write_moved_lists(NeighbourLists& lists);
+  void release_build_buffers();  // what only the collection of the lists reads (restructure())
   void insert_entry(NeighbourLists& lists, std::size_t j, std::uint32_t entry);
   void move_slot(NeighbourLists& lists, std::size_t i, std::size_t room);
 
@@ -225,9 +229,9 @@ class NeighbourSearch {
   };
   std::vector<ThreadScratch> scratch_;
   // update() only.
-  bool kept_ = false;                  // the lists are update()'s (slotted, anchored)
-  double build_h_max_ = 0.0;           // the largest h of the build (image reach, periodic edge)
-  std::array<double, 3> beyond_{};     // how far the deepest particle of the build had crossed each plane
+  bool kept_ = false;               // the lists are update()'s (slotted, anchored)
+  double build_h_max_ = 0.0;        // the largest h of the build (image reach, periodic edge)
+  std::array<double, 3> beyond_{};  // how far the deepest particle of the build had crossed each plane
   std::uint64_t restructures_ = 0, searches_ = 0;
   std::vector<std::uint32_t> image_rank_;  // sorted index of each image entry (image_start_ order)
   std::vector<std::uint64_t> slot_end_;    // end of each particle's slot in NeighbourLists::neighbours
@@ -235,7 +239,7 @@ class NeighbourSearch {
   std::vector<std::uint8_t> moved_;        // per particle: re-anchored in this call
   std::vector<std::uint32_t> moved_list_;  // their indices, ascending
   std::vector<std::array<double, 4>> moved_anchor_;  // their new anchors (x, y, z wrapped; h)
-  std::vector<std::uint64_t> fresh_offsets_;          // their new lists, in moved_list_ order (CSR)
+  std::vector<std::uint64_t> fresh_offsets_;         // their new lists, in moved_list_ order (CSR)
   std::vector<std::uint32_t> fresh_;
 };
 

@@ -77,4 +77,25 @@ inline double deviatoric_strain_rate_invariant(const Tensor3& velocity_gradient)
   return std::sqrt(0.5 * sum);
 }
 
+// The rate at which the plastic strain grows, in the measure of deviatoric_strain_rate_invariant(), for a
+// stress on the yield surface (the caller decides that it is): the part of the strain rate that would raise
+// sqrt(J2) above Y and that the radial return removes. With the Jaumann rate dS/dt = 2 G eps_dot' (+ a
+// rotation, which keeps J2), d sqrt(J2)/dt = G (S : eps_dot') / sqrt(J2); the return takes it back as a
+// plastic strain of (d sqrt(J2)/dt) / (2 G) per unit time (as sqrt(J2_trial) - Y = 2 G delta eps_p for a
+// radial return), so that
+//   d eps_p / dt = max(0, S : eps_dot' / (2 sqrt(J2))),
+// which for a flow along S (eps_dot' = k S) equals sqrt(eps_dot' : eps_dot' / 2), the total strain rate.
+// Zero when unloading (S : eps_dot' < 0) or without stress.
+inline double plastic_strain_rate_at_yield(const DeviatoricStress& s,
+                                           const Tensor3& velocity_gradient) noexcept {
+  const double root = std::sqrt(second_invariant(s));
+  if (!(root > 0.0)) return 0.0;
+  const Tensor3& L = velocity_gradient;
+  // S is traceless, so S : eps_dot' = S : sym(L).
+  const double zz = -(s.xx + s.yy);
+  const double contraction = s.xx * L[0][0] + s.yy * L[1][1] + zz * L[2][2] + s.xy * (L[0][1] + L[1][0]) +
+                             s.xz * (L[0][2] + L[2][0]) + s.yz * (L[1][2] + L[2][1]);
+  return std::max(0.0, contraction / (2.0 * root));
+}
+
 }  // namespace craterkit::sph

@@ -8,7 +8,8 @@
 //
 // What is kept (docs/materials.md, "Late-stage transition"):
 //  - [strength] unchanged: cohesion, friction and limiting strength are properties of the granular
-//    material, not of the wave speed.
+//    material, not of the wave speed. A material with weakening_strain = "plastic_after_switch" counts
+//    only the plastic strain from here on (yield_strength.hpp, WeakeningStrain).
 //  - [porosity]: the crush curve is unchanged and keeps working with the linear matrix law
 //    (distention_rate() gets dP_m/drho_m = A_low/rho_m0, dP_m/dE = 0); both sound speeds of the
 //    porous interpolation (c_e and c_s) are scaled by sqrt(A_low/A), so h(alpha) and the reduced shear

@@ -13,10 +13,20 @@
 
 namespace craterkit::sph {
 
+// The strain that weakens the cohesion (docs/strength_and_porosity.md, "Which strain weakens"):
+//  - total: the accumulated total deviatoric strain, elastic and plastic (docs/physics.md section 2; the
+//    published model and the default);
+//  - plastic_after_switch: the total strain in the shock stage, only the plastic strain after the late-stage
+//    switch, whose shear modulus (scaled by A_low/A, about 1e-6 for rock) turns every stress of the slow flow
+//    into an elastic strain about 1e6 times the shock stage's, which the total strain would count;
+//  - plastic: the plastic strain only. late_stage_material() turns plastic_after_switch into plastic.
+enum class WeakeningStrain { total, plastic_after_switch, plastic };
+
 struct LundborgStrength {
   double cohesion = 0.0;              // Y0, Pa (intact, before strain weakening)
   double friction_coefficient = 0.0;  // f, dimensionless
   double limiting_strength = 3.5e9;   // Y_dm, Pa
+  WeakeningStrain weakening_strain = WeakeningStrain::total;
 };
 
 struct VonMisesStrength {

@@ -69,6 +69,7 @@
 #include "craterkit/sph/particles/mirror_image.hpp"
 #include "craterkit/sph/particles/particle_selection.hpp"
 #include "craterkit/sph/particles/particles.hpp"
+#include "craterkit/sph/physics/material.hpp"
 #include "craterkit/sph/rates/artificial_stress.hpp"
 
 namespace craterkit::sph {
@@ -120,7 +121,9 @@ struct PairList {
   std::span<const std::uint32_t> neighbours;
   std::span<const std::uint64_t> ends = {};
   // Where list i ends: ends[i] reads ends_of()[i].
-  [[nodiscard]] const std::uint64_t* ends_of() const { return ends.empty() ? offsets.data() + 1 : ends.data(); }
+  [[nodiscard]] const std::uint64_t* ends_of() const {
+    return ends.empty() ? offsets.data() + 1 : ends.data();
+  }
 };
 
 // Corrected velocity gradient (grad v)_ab = dv_a/dx_b per particle, row-major (xx, xy, xz, yx, ...), for
@@ -169,6 +172,17 @@ RateSummary compute_rates(Particles& particles, const PairList& pairs, const Rat
 RateSummary compute_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                           RateWorkspace& workspace, const ParticleSelection& selection,
                           VelocityGradients* gradients = nullptr);
+
+// Solids (options.solid): the same pass over the selected particles, which in addition writes their stress
+// rates as compute_stress_rates() would (store_stress_rate, stress_rates.hpp) from the corrected velocity
+// gradient it has just computed. Why: the gradient is then not stored, so a solver that needs nothing else of
+// it holds no VelocityGradients (9 doubles, 72 bytes per particle). shear_modulus as update_material_state()
+// fills it; materials[m] is material id m (for the strain that weakens its cohesion).
+RateSummary compute_rates_and_stress_rates(Particles& particles, const PairList& pairs,
+                                           const RateOptions& options, RateWorkspace& workspace,
+                                           const ParticleSelection& selection,
+                                           std::span<const double> shear_modulus,
+                                           std::span<const Material> materials);
 
 [[nodiscard]] std::string_view viscosity_switch_name(ViscositySwitch s) noexcept;
 

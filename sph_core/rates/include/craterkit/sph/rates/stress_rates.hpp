@@ -8,8 +8,11 @@
 //    the deviatoric stress onto the yield surface of the current state (deviatoric_stress.hpp). Calling
 //    it after each update of the stress (predict and correct) is the "radial return after each step".
 //  - compute_stress_rates(): after the pair pass, the Jaumann rate dS/dt of Hooke's law with the
-//    Randles-Libersky corrected velocity gradient, and the rate of the accumulated strain
-//    sqrt(eps_dot':eps_dot'/2), stored in Particles for the integrator.
+//    Randles-Libersky corrected velocity gradient, and the rate of the accumulated strain that weakens the
+//    cohesion (yield_strength.hpp, WeakeningStrain): the total sqrt(eps_dot':eps_dot'/2), or for a
+//    material counting the plastic strain the plastic rate of a stress on the yield surface (zero below
+//    it), stored in Particles for the integrator. The solver has the pair pass store them itself
+//    (compute_rates_and_stress_rates, rates.hpp, through store_stress_rate below).
 //  - compute_distention_rates(): after the pair pass, the P-alpha distention rate dalpha/dt of
 //    Jutzi et al. (2008) (p_alpha.hpp) from the pair pass's drho/dt and du/dt at the same state.
 // Porous materials (docs/physics.md section 2, "Porosity"; rules in material_response.hpp):
@@ -26,11 +29,17 @@
 //    by alpha again in the momentum equation.
 // Each function works on the selected particles only (all of them with a global time step, those whose
 // step ends now with block time steps) and leaves the others untouched.
+#include <cmath>
+#include <cstddef>
 #include <span>
+#include <variant>
 #include <vector>
 
 #include "craterkit/sph/particles/particles.hpp"
+#include "craterkit/sph/physics/deviatoric_stress.hpp"
 #include "craterkit/sph/physics/material.hpp"
+#include "craterkit/sph/physics/material_response.hpp"
+#include "craterkit/sph/physics/yield_strength.hpp"
 #include "craterkit/sph/rates/rates.hpp"
 
 namespace craterkit::sph {
@@ -43,10 +52,50 @@ void update_material_state(Particles& particles, std::span<const Material> mater
                            RateWorkspace& workspace, std::vector<double>& shear_modulus,
                            const ParticleSelection& selection);
 
-// dS/dt and d(total strain)/dt of every active particle from the corrected gradient of the last rate
-// pass (zero for fixed and ejected particles, and no strain accumulates where G = 0).
-void compute_stress_rates(Particles& particles, const VelocityGradients& gradients,
-                          std::span<const double> shear_modulus, const ParticleSelection& selection);
+// dS/dt and the rate of the weakening strain (Particles::total_strain_rate) of every active particle from
+// the corrected gradient of the last rate pass (zero for fixed and ejected particles, and no strain
+// accumulates where G = 0). Requires pressure and the returned stress from update_material_state().
+void compute_stress_rates(Particles& particles, std::span<const Material> materials,
+                          const VelocityGradients& gradients, std::span<const double> shear_modulus,
+                          const ParticleSelection& selection);
+
+// What compute_stress_rates() stores for one moving particle i with corrected velocity gradient L
+// (L[a][b] = dv_a/dx_b), shear modulus G and material; shared with the pair pass that computes the stress
+// rates itself (compute_rates_and_stress_rates), so that both give the same bits. Requires pressure and
+// the returned stress from update_material_state().
+inline void store_stress_rate(Particles& p, std::size_t i, const Tensor3& L, double G,
+                              const Material& material) {
+  if (!(G > 0.0)) {
+    p.stress_rate_xx[i] = p.stress_rate_xy[i] = p.stress_rate_xz[i] = 0.0;
+    p.stress_rate_yy[i] = p.stress_rate_yz[i] = p.total_strain_rate[i] = 0.0;
+    return;
+  }
+  const DeviatoricStress stress{p.stress_xx[i], p.stress_xy[i], p.stress_xz[i], p.stress_yy[i],
+                                p.stress_yz[i]};
+  const DeviatoricStress rate = jaumann_stress_rate(stress, L, G);
+  p.stress_rate_xx[i] = rate.xx;
+  p.stress_rate_xy[i] = rate.xy;
+  p.stress_rate_xz[i] = rate.xz;
+  p.stress_rate_yy[i] = rate.yy;
+  p.stress_rate_yz[i] = rate.yz;
+  const auto* law = material.strength ? std::get_if<LundborgStrength>(&*material.strength) : nullptr;
+  if (law == nullptr || law->weakening_strain != WeakeningStrain::plastic) {
+    p.total_strain_rate[i] = deviatoric_strain_rate_invariant(L);
+    return;
+  }
+  // On the yield surface: the stress was returned to it by update_material_state() (to rounding), or is
+  // within the 1e-12 that the return leaves alone; the same Y, from the floored pressure and the strain.
+  const double yield_strength =
+      evaluate_strength(material.strength, p.pressure[i], p.total_strain[i]).yield_strength;
+  const bool at_yield = std::sqrt(second_invariant(stress)) >= yield_strength * (1.0 - 1e-9);
+  p.total_strain_rate[i] = at_yield ? plastic_strain_rate_at_yield(stress, L) : 0.0;
+}
+
+// The per-particle inputs of store_stress_rate() for the pair pass: shear_modulus[i] and materials[id].
+struct StressRateInputs {
+  const double* shear_modulus;
+  const Material* materials;
+};
 
 // After the corrector: a porous particle whose distention fell in the step below the crush-curve value of
 // its new state (the distention that puts the state reached from alpha^n = distention_before on the

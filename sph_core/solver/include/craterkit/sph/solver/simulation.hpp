@@ -10,9 +10,10 @@
 //
 // Solid mechanics is on when any material has a [strength] block: the equation-of-state phase then
 // evaluates the full material (floor, longitudinal signal speed, shear modulus, radial return) and the
-// stress rates follow the pair pass (stress_rates.hpp). With a [porosity] material (with or without
-// strength) the same per-particle phase evaluates the porous pressure and returns states to the crush
-// curve, and the distention rate follows the pair pass. Fluid-only runs take the fluid path unchanged.
+// stress rates come out of the pair pass itself (compute_rates_and_stress_rates: no velocity gradient is
+// held). With a [porosity] material (with or without strength) the same per-particle phase evaluates the
+// porous pressure and returns states to the crush curve, and the distention rate follows the pair pass.
+// Fluid-only runs take the fluid path unchanged.
 //
 // Late-stage transition (physics/late_stage.hpp, docs/physics.md section 3): when the problem plans one, the
 // step that would pass t_transition is shortened to end on it; after that step every material switches to the
@@ -174,7 +175,6 @@ class Simulation {
   NeighbourSearch search_;
   NeighbourLists lists_;
   RateWorkspace rate_workspace_;
-  VelocityGradients gradients_;        // solid runs only
   std::vector<double> shear_modulus_;  // solid runs only: G per particle, Pa
   IntegratorWorkspace integrator_workspace_;
   std::vector<std::uint32_t> order_;
