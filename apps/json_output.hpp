@@ -1,6 +1,7 @@
 #pragma once
 // Every JSON object the program prints or writes carries the version of craterkit that made it, under
 // "craterkit_version" (first key), so that a result can be traced to the code.
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -9,6 +10,11 @@
 #include "craterkit_version.hpp"
 
 namespace craterkit::cli {
+
+// A number, or null where it is not finite (JSON has no NaN or infinity).
+inline nlohmann::json number_or_null(double x) {
+  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
+}
 
 // The object with "craterkit_version" added in front (an object already carrying it is left as it is).
 template <class Json>

@@ -460,6 +460,6 @@ void add_age_command(CLI::App& parent) {
   sub->callback([o] { run_age(*o); });
 }
 
-const bool registered = craterkit::cli::register_command({"age", 40, &add_age_command});
+const bool age_registered = craterkit::cli::register_command({"age", 40, &add_age_command});
 
 }  // namespace

@@ -159,7 +159,7 @@ void add_fit_command(CLI::App& parent) {
   sub->callback([options] { run_fit(*options); });
 }
 
-const bool registered = register_command({"fit", 20, &add_fit_command});
+const bool fit_registered = register_command({"fit", 20, &add_fit_command});
 
 }  // namespace
 }  // namespace craterkit::cli

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "join.hpp"
+
 namespace craterkit::cli {
 namespace {
 
@@ -14,12 +16,6 @@ std::string format_sigma(const scaling::FittedParameter& p) {
   if (p.fixed) return "(fixed)";
   if (!p.determined) return "(NOT DETERMINED by these data)";
   return fmt::format("+- {:.3g}{}", p.sigma, p.at_bound ? "  (at a bound: sigma not meaningful)" : "");
-}
-
-std::string join(const std::vector<std::string>& items, const std::string& separator = ", ") {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : separator) + item;
-  return out;
 }
 
 // "line 9 (run x)" for each line, with the run's name when the table has one; after the first 20 lines only

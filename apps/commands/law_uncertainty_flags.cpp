@@ -6,18 +6,13 @@
 #include <fmt/format.h>
 
 #include "craterkit/common/input_error.hpp"
+#include "join.hpp"
 
 namespace craterkit::cli {
 namespace {
 
 constexpr int kMinSamples = 100;  // fewer draws give percentiles too coarse to report
 constexpr int kMaxSamples = 1000000;
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
-  return out;
-}
 
 }  // namespace
 

@@ -152,7 +152,7 @@ void add_list_command(CLI::App& parent) {
   sub->callback([options] { run_list(*options); });
 }
 
-const bool registered = register_command({"list", 5, &add_list_command});
+const bool list_registered = register_command({"list", 5, &add_list_command});
 
 }  // namespace
 }  // namespace craterkit::cli

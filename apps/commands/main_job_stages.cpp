@@ -7,15 +7,10 @@
 #include <fmt/format.h>
 
 #include "craterkit/common/input_error.hpp"
+#include "json_output.hpp"
 
 namespace craterkit::cli {
-namespace {
-
-nlohmann::json number_or_null(double x) {
-  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 nlohmann::json compare_with_shipped(const scaling::RadiiTable& live, const scaling::RadiiTable& shipped,
                                     std::string& report) {

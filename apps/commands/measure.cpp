@@ -220,7 +220,7 @@ void add_measure_command(CLI::App& parent) {
   sub->callback([options] { run_measure(*options); });
 }
 
-const bool registered = register_command({"measure", 60, &add_measure_command});
+const bool measure_registered = register_command({"measure", 60, &add_measure_command});
 
 }  // namespace
 }  // namespace craterkit::cli

@@ -205,6 +205,6 @@ void add_rates_command(CLI::App& parent) {
   sub->callback([o] { run_rates(*o); });
 }
 
-const bool registered = craterkit::cli::register_command({"rates", 30, &add_rates_command});
+const bool rates_registered = craterkit::cli::register_command({"rates", 30, &add_rates_command});
 
 }  // namespace

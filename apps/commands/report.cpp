@@ -35,11 +35,6 @@ struct ReportCommandOptions {
   bool quiet = false;
 };
 
-std::string producer() {
-  const std::string commit = CRATERKIT_GIT_COMMIT;
-  return std::string("craterkit ") + CRATERKIT_VERSION + (commit.empty() ? "" : " (git " + commit + ")");
-}
-
 // The tables named on the command line: DIR/radii.csv of a sweep folder, then every --radii FILE.
 std::vector<fs::path> table_paths(const ReportCommandOptions& o) {
   std::vector<fs::path> paths;
@@ -102,7 +97,7 @@ void remove_earlier_report(const fs::path& dir) {
 void run_report(const ReportCommandOptions& o) {
   ReportOptions options;
   if (o.group_by) options.group_by = parse_group_by(*o.group_by);
-  options.producer = producer();
+  options.producer = craterkit_producer();
   options.progress = !o.quiet;
   const auto paths = table_paths(o);
   check_report_folder(o);
@@ -115,14 +110,7 @@ void run_report(const ReportCommandOptions& o) {
   fs::create_directories(o.out);
   if (o.overwrite) remove_earlier_report(o.out);
   const auto written = write_report(report, o.out, options.progress);
-  if (o.json) {
-    std::cout << written.json;
-    return;
-  }
-  std::cout << written.markdown;
-  std::string files;
-  for (const auto& f : written.files) files += (files.empty() ? "" : ", ") + f.string();
-  fmt::print("\nwritten: {}\n", files);
+  print_written_report(written, o.json);
 }
 
 void add_report_command(CLI::App& parent) {
@@ -152,7 +140,7 @@ void add_report_command(CLI::App& parent) {
   sub->callback([o] { run_report(*o); });
 }
 
-const bool registered = register_command({"report", 45, &add_report_command});
+const bool report_registered = register_command({"report", 45, &add_report_command});
 
 }  // namespace
 }  // namespace craterkit::cli

@@ -248,6 +248,17 @@ WrittenReport write_report(const Report& report, const std::filesystem::path& di
   return out;
 }
 
+void print_written_report(const WrittenReport& written, bool json) {
+  if (json) {
+    std::cout << written.json;
+    return;
+  }
+  std::cout << written.markdown;
+  std::string files;
+  for (const auto& f : written.files) files += (files.empty() ? "" : ", ") + f.string();
+  fmt::print("\nwritten: {}\n", files);
+}
+
 bool is_report_output(const std::string& name) {
   if (name == "report.md" || name == "report.json" || name == "fit.json") return true;
   if (name.starts_with("fit_") && name.ends_with(".json")) return true;

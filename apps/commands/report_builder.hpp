@@ -58,6 +58,9 @@ struct WrittenReport {
 // Writes the report into `dir` (an existing folder), each file atomically.
 WrittenReport write_report(const Report& report, const std::filesystem::path& dir, bool progress);
 
+// Prints what the command prints when done: report.json with `json`, else report.md and the files written.
+void print_written_report(const WrittenReport& written, bool json);
+
 // Whether a file of that name is one write_report writes (what --overwrite replaces), or a temporary one of
 // those.
 bool is_report_output(const std::string& file_name);

@@ -15,6 +15,7 @@
 #include "craterkit/chronology/scaled_production.hpp"
 #include "craterkit/common/data_path.hpp"
 #include "production_flags.hpp"
+#include "report_fits.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -46,10 +47,6 @@ const RyuguCount kRyuguCounts[] = {
 
 // Every tenth point of an age density's grid (and its last): enough to draw it, a tenth of the size.
 constexpr std::size_t kDensityStride = 10;
-
-std::string cohesion_text(double y) {
-  return fmt::format("{:g}", y);
-}
 
 // An age in the unit that suits it, with its 1-sigma range in the same unit.
 std::string age_text(const ck::AgeEstimate& age) {

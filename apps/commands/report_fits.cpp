@@ -13,6 +13,7 @@
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/constant_sets.hpp"
 #include "craterkit/scaling/fit_json.hpp"
+#include "json_output.hpp"
 #include "progress_line.hpp"
 
 namespace craterkit::cli {
@@ -27,14 +28,6 @@ constexpr const char* kPublishedPerlite = "hh2011_perlite_sand";
 // Points along pi_2 of a curve, and how far the curves reach beyond the group's rows (a factor each way).
 constexpr int kCurvePoints = 61;
 constexpr double kCurveMargin = 3.0;
-
-nlohmann::json number_or_null(double x) {
-  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
-}
-
-std::string cohesion_text(double y) {
-  return fmt::format("{:g}", y);
-}
 
 std::string parameter_text(const scaling::FitResult& fit, const std::string& name) {
   const auto found = std::find_if(fit.parameters.begin(), fit.parameters.end(),
@@ -62,6 +55,10 @@ std::vector<double> sorted_cohesions(const scaling::RadiiTable& table, const sca
 }
 
 }  // namespace
+
+std::string cohesion_text(double cohesion) {
+  return fmt::format("{:g}", cohesion);
+}
 
 namespace {
 

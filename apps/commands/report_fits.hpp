@@ -14,6 +14,9 @@
 
 namespace craterkit::cli {
 
+// A cohesion in Pa in short form for tables and labels ("0.05", "2").
+std::string cohesion_text(double cohesion);
+
 // "friction=0.55, porosity=0.5": a group's values with numbers in short form (a sweep writes them with 17
 // digits, 0.55000000000000004); "all rows" for an empty key.
 std::string key_label(const scaling::GroupKey& key);

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "craterkit/scaling/grouped_fit.hpp"
+#include "json_output.hpp"
 #include "report_fits.hpp"
 #include "sci_impact.hpp"
 
@@ -19,10 +20,6 @@ namespace craterkit::cli {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-nlohmann::json number_or_null(double x) {
-  return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr);
-}
 
 std::string pa(double y) {
   return fmt::format("{:.3g}", y);

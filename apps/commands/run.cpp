@@ -48,11 +48,6 @@ struct MainJobOptions {
   bool json = false;
 };
 
-std::string producer() {
-  const std::string commit = CRATERKIT_GIT_COMMIT;
-  return std::string("craterkit ") + CRATERKIT_VERSION + (commit.empty() ? "" : " (git " + commit + ")");
-}
-
 void check_options(const MainJobOptions& o) {
   if (o.full && o.study)
     throw InputError("--full and --study exclude each other: --full is the shipped study");
@@ -75,7 +70,7 @@ scaling::RadiiTable run_simulations(const std::filesystem::path& study_file, con
       o.jobs > 0 ? o.jobs : std::min<int>(study::available_cores(), static_cast<int>(plan.runs.size()));
   options.child = {std::filesystem::read_symlink("/proc/self/exe"),
                    o.threads > 0 ? o.threads : study::default_threads(options.jobs)};
-  options.producer = producer();
+  options.producer = craterkit_producer();
   options.log = &std::cerr;
   if (!o.json) {
     fmt::print("1. simulations: study {} ({} runs) in {}, {} at once, {} thread(s) each\n",
@@ -137,19 +132,12 @@ void run_main_job(const MainJobOptions& o) {
   ReportOptions options;
   options.group_by = std::vector<std::string>{};
   options.title = "craterkit main job";
-  options.producer = producer();
+  options.producer = craterkit_producer();
   options.preamble = preamble;
   options.extra = extra;
   options.progress = true;
   const auto written = write_report(build_report({table}, options), o.out, options.progress);
-  if (o.json) {
-    std::cout << written.json;
-    return;
-  }
-  std::cout << written.markdown;
-  std::string files;
-  for (const auto& f : written.files) files += (files.empty() ? "" : ", ") + f.string();
-  fmt::print("\nwritten: {}\n", files);
+  print_written_report(written, o.json);
 }
 
 void add_run_command(CLI::App& parent) {
@@ -177,7 +165,7 @@ void add_run_command(CLI::App& parent) {
   sub->callback([options] { run_main_job(*options); });
 }
 
-const bool registered = register_command({"run", 5, &add_run_command});
+const bool run_registered = register_command({"run", 5, &add_run_command});
 
 }  // namespace
 }  // namespace craterkit::cli

@@ -160,7 +160,7 @@ void add_scale_command(CLI::App& parent) {
   sub->callback([options] { run_scale(*options); });
 }
 
-const bool registered = register_command({"scale", 10, &add_scale_command});
+const bool scale_registered = register_command({"scale", 10, &add_scale_command});
 
 }  // namespace
 }  // namespace craterkit::cli

@@ -33,11 +33,7 @@ struct SimulateOptions {
   bool dry_run = false;
 };
 
-// NaN (no crater found) as null.
-nlohmann::json number_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
-}
-
+// A run summary as JSON; NaN (no crater found) as null.
 nlohmann::json summary_json(const sph::RunSummary& s) {
   nlohmann::json phases = nlohmann::json::object();
   for (const auto& [name, seconds] : s.phase_seconds) phases[name] = seconds;
@@ -294,7 +290,7 @@ void add_simulate_command(CLI::App& parent) {
   sub->callback([options] { run_simulate(*options); });
 }
 
-const bool registered = register_command({"simulate", 50, &add_simulate_command});
+const bool simulate_registered = register_command({"simulate", 50, &add_simulate_command});
 
 }  // namespace
 }  // namespace craterkit::cli

@@ -35,11 +35,6 @@ struct SweepCommandOptions {
   std::string collect;
 };
 
-std::string producer() {
-  const std::string commit = CRATERKIT_GIT_COMMIT;
-  return std::string("craterkit ") + CRATERKIT_VERSION + (commit.empty() ? "" : " (git " + commit + ")");
-}
-
 void check_flags(const SweepCommandOptions& o) {
   if (!o.collect.empty()) {
     if (!o.study.empty() || !o.out.empty() || o.dry_run || !o.emit.empty() || o.task || o.retry_failed) {
@@ -70,7 +65,7 @@ void check_flags(const SweepCommandOptions& o) {
 void run_sweep_command(const SweepCommandOptions& o) {
   check_flags(o);
   if (!o.collect.empty()) {
-    const auto report = study::collect(o.collect, producer());
+    const auto report = study::collect(o.collect, craterkit_producer());
     std::cout << study::format_collect_summary(report, -1, o.json);
     return;
   }
@@ -97,7 +92,7 @@ void run_sweep_command(const SweepCommandOptions& o) {
   options.jobs = o.jobs;
   options.child = {program, o.threads > 0 ? o.threads : study::default_threads(o.jobs)};
   options.retry_failed = o.retry_failed;
-  options.producer = producer();
+  options.producer = craterkit_producer();
   options.log = &std::cerr;
   if (o.task) {
     const auto record = study::run_task(plan, static_cast<std::size_t>(*o.task), options);
@@ -153,7 +148,7 @@ void add_sweep_command(CLI::App& parent) {
   sub->callback([options] { run_sweep_command(*options); });
 }
 
-const bool registered = register_command({"sweep", 55, &add_sweep_command});
+const bool sweep_registered = register_command({"sweep", 55, &add_sweep_command});
 
 }  // namespace
 }  // namespace craterkit::cli

@@ -4,8 +4,9 @@
 # downstream project finds craterkit with find_package and links its libraries, a chronology-only project
 # needs neither HDF5 nor OpenMP, and the installed Python package (when built) imports and computes.
 # Invoked by CTest with -DBUILD_DIR, -DCONSUMER_DIR, -DCHRONOLOGY_CONSUMER_DIR, -DSCRATCH (consumer builds),
-# the compiler/linker flags of the build (-DCONSUMER_CXX_FLAGS, -DCONSUMER_LINKER_FLAGS) and, for the Python
-# package, -DPYTHON=<interpreter> -DPYTHON_SUBDIR=<its folder under the prefix>.
+# the compiler and flags of the build (-DCONSUMER_CXX_COMPILER, -DCONSUMER_CXX_FLAGS, -DCONSUMER_LINKER_FLAGS:
+# sanitizer flags and runtimes belong to one compiler) and, for the Python package, -DPYTHON=<interpreter>
+# -DPYTHON_SUBDIR=<its folder under the prefix>.
 file(REMOVE_RECURSE ${SCRATCH})
 file(MAKE_DIRECTORY ${SCRATCH})
 # The installation lives outside the source and build trees (in the temporary folder), so that a binary
@@ -81,7 +82,7 @@ foreach(consumer ${CONSUMER_DIR} ${CHRONOLOGY_CONSUMER_DIR})
     set(extra -DCMAKE_DISABLE_FIND_PACKAGE_HDF5=ON -DCMAKE_DISABLE_FIND_PACKAGE_OpenMP=ON)
   endif()
   execute_process(COMMAND ${CMAKE_COMMAND} -S ${consumer} -B ${SCRATCH}/build_${name} -DCMAKE_PREFIX_PATH=${prefix}
-                          "-DCMAKE_CXX_FLAGS=${CONSUMER_CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_LINKER_FLAGS}"
+                          -DCMAKE_CXX_COMPILER=${CONSUMER_CXX_COMPILER} "-DCMAKE_CXX_FLAGS=${CONSUMER_CXX_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_LINKER_FLAGS}"
                           ${extra}
                   RESULT_VARIABLE rc)
   if(NOT rc EQUAL 0)

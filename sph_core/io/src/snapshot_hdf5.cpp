@@ -60,8 +60,10 @@ class SilenceHdf5Errors {
   void* data_ = nullptr;
 };
 
+// Dependent false for the static_asserts below (a class template: clang reports an unused variable
+// template here, since its uses sit in discarded branches).
 template <class>
-inline constexpr bool unsupported_field_type = false;
+struct UnsupportedFieldType : std::false_type {};
 
 // Memory (native) and file (little-endian standard) types of the field element types. A field of
 // another type added to Particles fails to compile here, with this message.
@@ -88,7 +90,7 @@ hid_t memory_type() {
   else if constexpr (std::is_same_v<T, std::int8_t>)
     return H5T_NATIVE_INT8;
   else
-    static_assert(unsupported_field_type<T>, "particle field element type without an HDF5 mapping");
+    static_assert(UnsupportedFieldType<T>::value, "particle field element type without an HDF5 mapping");
 }
 template <class T>
 hid_t file_type() {
@@ -113,7 +115,7 @@ hid_t file_type() {
   else if constexpr (std::is_same_v<T, std::int8_t>)
     return H5T_STD_I8LE;
   else
-    static_assert(unsupported_field_type<T>, "particle field element type without an HDF5 mapping");
+    static_assert(UnsupportedFieldType<T>::value, "particle field element type without an HDF5 mapping");
 }
 template <class T>
 std::string type_description() {
