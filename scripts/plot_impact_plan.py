@@ -102,6 +102,9 @@ def main(argv):
     fig.savefig(out, dpi=100)
     for b in crater.get("boulders", []):
         d = b["displacement"]
+        if b.get("displacement_magnitude") is None:  # none of its particles is left: ejected whole
+            print(f"{b['name']}: ejected ({b.get('ejected_mass', 0.0):.4g} kg), no displacement")
+            continue
         print(f"{b['name']}: displacement ({d[0]:+.3f}, {d[1]:+.3f}, {d[2]:+.3f}) m, "
               f"|d| = {np.linalg.norm(d):.3f} m")
     print("radii: " + ", ".join(f"{k} {v:.3f}" for k, v in radii.items()) + f"; crater_radius {r:.3f} m")
