@@ -2,6 +2,8 @@
 // with a message naming the key, the value and what is allowed (docs/sweep.md, "Study file").
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include "craterkit/study/run_name.hpp"
 #include "craterkit/study/study_file.hpp"
 #include "study_test_helpers.hpp"
@@ -156,6 +158,11 @@ struct BadStudy {
   std::string text;
   std::vector<std::string> expected;  // each must appear in the message
 };
+
+// GoogleTest names each case by what it tests instead of printing the struct's bytes.
+void PrintTo(const BadStudy& bad, std::ostream* out) {
+  *out << bad.what;
+}
 
 class StudyFileRejects : public ::testing::TestWithParam<BadStudy> {};
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <ostream>
 
 #include "craterkit/common/data_path.hpp"
 #include "craterkit/impact/impact_config.hpp"
@@ -236,6 +237,11 @@ struct BadPlan {
   std::string text;
   std::vector<std::string> expected;
 };
+
+// GoogleTest names each case by what it tests instead of printing the struct's bytes.
+void PrintTo(const BadPlan& bad, std::ostream* out) {
+  *out << bad.what;
+}
 
 class StudyPlanRejects : public ::testing::TestWithParam<BadPlan> {};
 
