@@ -43,13 +43,17 @@ CurveCube bounding_cube(std::span<const double> x, std::span<const double> y, st
     hi2 = std::max(hi2, z[i]);
   }
   if (!finite) throw std::invalid_argument("space-filling curve: non-finite particle coordinate");
-  double edge = std::max({hi0 - lo0, hi1 - lo1, hi2 - lo2});
-  const double scale = std::max(
-      {std::abs(lo0), std::abs(lo1), std::abs(lo2), std::abs(hi0), std::abs(hi1), std::abs(hi2), edge});
+  return cube_around({lo0, lo1, lo2}, {hi0, hi1, hi2});
+}
+
+CurveCube cube_around(const std::array<double, 3>& lower, const std::array<double, 3>& upper) {
+  double edge = std::max({upper[0] - lower[0], upper[1] - lower[1], upper[2] - lower[2]});
+  const double scale = std::max({std::abs(lower[0]), std::abs(lower[1]), std::abs(lower[2]),
+                                 std::abs(upper[0]), std::abs(upper[1]), std::abs(upper[2]), edge});
   // Enlarge a little so that the upper faces map to the last cell, not one past it; a zero extent
   // (all points equal) gets a unit-relative edge.
   edge = edge > 0 ? edge * (1 + 1e-9) : (scale > 0 ? scale * 1e-9 : 1.0);
-  return {{lo0, lo1, lo2}, edge};
+  return {lower, edge};
 }
 
 void morton_keys(std::span<const double> x, std::span<const double> y, std::span<const double> z,

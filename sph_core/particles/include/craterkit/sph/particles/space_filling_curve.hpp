@@ -53,6 +53,10 @@ struct CurveCube {
 // OpenMP-parallel. Throws std::invalid_argument on mismatched spans or non-finite coordinates.
 [[nodiscard]] CurveCube bounding_cube(std::span<const double> x, std::span<const double> y,
                                       std::span<const double> z);
+// The cube bounding_cube gives for points whose extent is [lower, upper] (finite, lower <= upper): also for
+// an extent reduced over the ranks of a distributed run (domain/curve_split.hpp), so that every rank's keys
+// are those of one cube.
+[[nodiscard]] CurveCube cube_around(const std::array<double, 3>& lower, const std::array<double, 3>& upper);
 
 // Morton key of every point within `cube` (points outside are clamped to its faces). keys.size() == x.size().
 void morton_keys(std::span<const double> x, std::span<const double> y, std::span<const double> z,

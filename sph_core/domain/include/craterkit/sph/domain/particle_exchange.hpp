@@ -1,0 +1,61 @@
+#pragma once
+// Moving particles between ranks: migration to the rank that owns them after a new split (curve_split.hpp),
+// and copies of the particles other ranks need as neighbours (halos). Every field of Particles travels
+// (for_each_field, the same list snapshots and checkpoints use), so a field added there is carried too.
+//
+// Layout of a rank's particles: sorted along the curve by (key, id), the owned particles a contiguous range
+// [owned.begin, owned.end), the halos of ranks with lower keys before them and those of ranks with higher
+// keys after them. That is the order a serial run holds the same particles in, so a pair loop that sums a
+// particle's neighbours in index order (lists sorted by entry, neighbour_search.hpp) adds the same terms in
+// the same order as the serial engine: results equal bit for bit.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "craterkit/sph/domain/communicator.hpp"
+#include "craterkit/sph/domain/curve_split.hpp"
+#include "craterkit/sph/particles/particles.hpp"
+
+namespace craterkit::sph {
+
+// Sends every particle to the rank that owns its key (keys[i] of particle i, on the curve of the global
+// cube). Afterwards this rank holds exactly the particles of its range, sorted by (key, id), and `keys`
+// theirs. Every rank's Particles must hold the same field set (solid_fields). Collective.
+void migrate(Particles& particles, std::vector<std::uint64_t>& keys, const KeyRanges& ranges,
+             const Communicator& comm);
+
+// The owned particles' index range in a rank's particles.
+struct OwnedRange {
+  std::size_t begin = 0, end = 0;
+  [[nodiscard]] std::size_t size() const { return end - begin; }
+};
+
+// Which owned particles each other rank needs: send[q] lists (ascending) the particles of this rank within
+// reach of a particle of rank q, where reach means |x_i - x_j| < (1 + skin)(h_i + h_j), the neighbour
+// criterion of the search with that skin (neighbour_search.hpp).
+struct HaloPlan {
+  std::vector<std::vector<std::uint32_t>> send;  // size ranks; send[rank()] is empty
+};
+
+// Finds the halos of the owned particles (all of this rank's particles, sorted along the curve) with a
+// two-level box test: ranks exchange the bounding box and largest h of their particles, then, with each rank
+// within reach, the boxes of the groups within reach of it (consecutive particles along the curve, at most
+// `group_size`, no wider than half their largest h), and every particle is tested against the boxes of the
+// groups it may reach. Complete: if |x_i - x_j| < (1 + skin)(h_i + h_j), j is in send[owner of i];
+// conservative: a few particles are sent that are no neighbour there (a box is wider than its particles).
+// Collective.
+[[nodiscard]] HaloPlan find_halos(std::span<const double> x, std::span<const double> y,
+                                  std::span<const double> z, std::span<const double> smoothing_length,
+                                  double skin, const Communicator& comm, std::size_t group_size = 32);
+
+// Adds to `particles` (this rank's owned particles only, sorted along the curve) copies of the particles of
+// other ranks that `plan` sends here, in the layout above; `keys` (one per particle) grows with them. Returns
+// where the owned particles are now. Collective.
+OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, const HaloPlan& plan,
+                        const Communicator& comm);
+
+// Removes the halos again: only the owned range stays (of particles and keys).
+void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned);
+
+}  // namespace craterkit::sph

@@ -1,0 +1,318 @@
+#include "craterkit/sph/domain/particle_exchange.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+
+namespace craterkit::sph {
+namespace {
+
+template <class Field>
+using element_of = typename std::decay_t<Field>::value_type;
+
+// Bytes one particle takes in transit: its key and every field.
+std::size_t particle_bytes(Particles& particles) {
+  std::size_t bytes = sizeof(std::uint64_t);
+  particles.for_each_field(
+      [&](std::string_view, auto& field) { bytes += sizeof(element_of<decltype(field)>); });
+  return bytes;
+}
+
+// Every rank must carry the same fields, or the bytes of one rank's particles would be read as another's.
+std::size_t common_particle_bytes(Particles& particles, const Communicator& comm) {
+  const std::size_t bytes = particle_bytes(particles);
+  std::vector<double> low{double(bytes)}, high{double(bytes)};
+  comm.min(low);
+  comm.max(high);
+  if (low[0] != high[0])
+    throw std::invalid_argument(
+        "particle exchange: the ranks' particles hold different fields (solid_fields)");
+  return bytes;
+}
+
+// Appends the key and every field of the particles `indices` to `out`, one field after the other, so that
+// each field of the packed particles is one contiguous block (unpack_append copies it in one piece).
+void pack(Particles& particles, const std::vector<std::uint64_t>& keys,
+          std::span<const std::uint32_t> indices, std::vector<std::byte>& out) {
+  const auto put = [&](const auto& field) {
+    using T = element_of<decltype(field)>;
+    const std::size_t at = out.size();
+    out.resize(at + indices.size() * sizeof(T));
+    std::byte* destination = out.data() + at;
+    for (const std::uint32_t i : indices) {
+      std::memcpy(destination, &field[i], sizeof(T));
+      destination += sizeof(T);
+    }
+  };
+  put(keys);
+  particles.for_each_field([&](std::string_view, auto& field) { put(field); });
+}
+
+// Appends `count` particles packed by pack() (with the same field set) to `particles` and `keys`.
+void unpack_append(std::span<const std::byte> bytes, std::size_t count, Particles& particles,
+                   std::vector<std::uint64_t>& keys) {
+  const std::byte* source = bytes.data();
+  const auto take = [&](auto& field) {
+    using T = element_of<decltype(field)>;
+    const std::size_t at = field.size();
+    field.resize(at + count);
+    if (count) std::memcpy(field.data() + at, source, count * sizeof(T));
+    source += count * sizeof(T);
+  };
+  take(keys);
+  particles.for_each_field([&](std::string_view, auto& field) { take(field); });
+}
+
+std::vector<std::uint32_t> all_indices(std::size_t n) {
+  std::vector<std::uint32_t> indices(n);
+  std::iota(indices.begin(), indices.end(), std::uint32_t{0});
+  return indices;
+}
+
+Particles empty_like(const Particles& particles) {
+  Particles empty;
+  empty.solid_fields = particles.solid_fields;
+  return empty;
+}
+
+// An axis-aligned box of particle positions and the largest h among them, as 7 doubles (sent as bytes).
+struct ReachBox {
+  std::array<double, 3> lower{std::numeric_limits<double>::infinity(),
+                              std::numeric_limits<double>::infinity(),
+                              std::numeric_limits<double>::infinity()};
+  std::array<double, 3> upper{-std::numeric_limits<double>::infinity(),
+                              -std::numeric_limits<double>::infinity(),
+                              -std::numeric_limits<double>::infinity()};
+  double h_max = 0.0;
+
+  [[nodiscard]] bool empty() const { return !(lower[0] <= upper[0]); }
+  void add(double x, double y, double z, double h) {
+    const double p[3] = {x, y, z};
+    for (std::size_t a = 0; a < 3; ++a) {
+      lower[a] = std::min(lower[a], p[a]);
+      upper[a] = std::max(upper[a], p[a]);
+    }
+    h_max = std::max(h_max, h);
+  }
+};
+static_assert(std::is_trivially_copyable_v<ReachBox> && sizeof(ReachBox) == 7 * sizeof(double));
+
+double squared_gap(const ReachBox& a, const ReachBox& b) {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double gap = std::max({0.0, a.lower[k] - b.upper[k], b.lower[k] - a.upper[k]});
+    sum += gap * gap;
+  }
+  return sum;
+}
+
+double squared_gap(double x, double y, double z, const ReachBox& b) {
+  const double p[3] = {x, y, z};
+  double sum = 0.0;
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double gap = std::max({0.0, b.lower[k] - p[k], p[k] - b.upper[k]});
+    sum += gap * gap;
+  }
+  return sum;
+}
+
+// Whether some particle in a may be within (1 + skin)(h_i + h_j) of some particle in b. The distance between
+// the boxes is at most that of any two of their particles, and their h at most h_max.
+bool within_reach(const ReachBox& a, const ReachBox& b, double grow) {
+  if (a.empty() || b.empty()) return false;
+  const double reach = grow * (a.h_max + b.h_max);
+  return squared_gap(a, b) < reach * reach;
+}
+
+template <class T>
+std::span<const T> view_as(std::span<const std::byte> bytes) {
+  return {reinterpret_cast<const T*>(bytes.data()), bytes.size() / sizeof(T)};
+}
+
+}  // namespace
+
+void migrate(Particles& particles, std::vector<std::uint64_t>& keys, const KeyRanges& ranges,
+             const Communicator& comm) {
+  if (keys.size() != particles.size()) throw std::invalid_argument("migrate: one key per particle expected");
+  if (ranges.ranks() != comm.size())
+    throw std::invalid_argument("migrate: the key ranges are for another rank count");
+  const std::size_t bytes_per_particle = common_particle_bytes(particles, comm);
+
+  std::vector<std::vector<std::uint32_t>> leaving(std::size_t(comm.size()));
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    leaving[std::size_t(ranges.owner(keys[i]))].push_back(std::uint32_t(i));
+  RankBytes send;
+  send.counts.resize(std::size_t(comm.size()));
+  for (std::size_t rank = 0; rank < leaving.size(); ++rank) {
+    const std::size_t before = send.bytes.size();
+    pack(particles, keys, leaving[rank], send.bytes);
+    send.counts[rank] = send.bytes.size() - before;
+  }
+  const RankBytes received = comm.all_to_all(send);
+
+  Particles arrived = empty_like(particles);
+  std::vector<std::uint64_t> arrived_keys;
+  std::size_t at = 0;
+  for (const std::size_t bytes : received.counts) {
+    unpack_append(std::span(received.bytes).subspan(at, bytes), bytes / bytes_per_particle, arrived,
+                  arrived_keys);
+    at += bytes;
+  }
+  // Sorted along the curve, ties by id: the order of a serial run over the same particles.
+  std::vector<std::uint32_t> order = all_indices(arrived.size());
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return std::tie(arrived_keys[a], arrived.id[a]) < std::tie(arrived_keys[b], arrived.id[b]);
+  });
+  arrived.permute(order);
+  std::vector<std::uint64_t> sorted_keys(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted_keys[k] = arrived_keys[order[k]];
+  particles = std::move(arrived);
+  keys = std::move(sorted_keys);
+}
+
+HaloPlan find_halos(std::span<const double> x, std::span<const double> y, std::span<const double> z,
+                    std::span<const double> smoothing_length, double skin, const Communicator& comm,
+                    std::size_t group_size) {
+  const std::size_t n = x.size();
+  if (y.size() != n || z.size() != n || smoothing_length.size() != n)
+    throw std::invalid_argument("find_halos: x, y, z and smoothing_length must have the same length");
+  if (!(skin >= 0) || group_size == 0)
+    throw std::invalid_argument("find_halos: skin >= 0 and group_size >= 1 needed");
+  const double grow = 1.0 + skin;
+  const std::size_t ranks = std::size_t(comm.size());
+  const std::size_t me = std::size_t(comm.rank());
+
+  // Groups of consecutive particles (near each other: they are sorted along the curve), at most group_size of
+  // them, and a group ends before a particle that would make its box wider than half its largest h: the curve
+  // jumps where it leaves an octree cell, and a box wider than the support sends particles nobody needs (on
+  // the graded block of tests/sph_core/domain 0.4-4 % of the halos are unused; with fixed groups of 32, up to
+  // 45 %). Group g holds particles [first[g], first[g + 1]); `mine` bounds them all.
+  std::vector<ReachBox> groups;
+  std::vector<std::size_t> first;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!groups.empty() && i - first.back() < group_size) {
+      ReachBox grown = groups.back();
+      grown.add(x[i], y[i], z[i], smoothing_length[i]);
+      double width = 0.0;
+      for (std::size_t a = 0; a < 3; ++a) width = std::max(width, grown.upper[a] - grown.lower[a]);
+      if (width <= 0.5 * grown.h_max) {
+        groups.back() = grown;
+        continue;
+      }
+    }
+    groups.emplace_back().add(x[i], y[i], z[i], smoothing_length[i]);
+    first.push_back(i);
+  }
+  first.push_back(n);
+  const std::size_t group_count = groups.size();
+  ReachBox mine;
+  for (const ReachBox& group : groups) {
+    mine.add(group.lower[0], group.lower[1], group.lower[2], group.h_max);
+    mine.add(group.upper[0], group.upper[1], group.upper[2], group.h_max);
+  }
+  const RankBytes rank_boxes_bytes = comm.all_gather(std::as_bytes(std::span(&mine, 1)));
+  const std::span<const ReachBox> rank_boxes = view_as<ReachBox>(rank_boxes_bytes.bytes);
+
+  // To every rank within reach, the boxes of the groups within reach of it.
+  RankBytes send;
+  send.counts.assign(ranks, 0);
+  for (std::size_t q = 0; q < ranks; ++q) {
+    if (q == me || !within_reach(mine, rank_boxes[q], grow)) continue;
+    const std::size_t before = send.bytes.size();
+    for (const ReachBox& group : groups) {
+      if (!within_reach(group, rank_boxes[q], grow)) continue;
+      const auto bytes = std::as_bytes(std::span(&group, 1));
+      send.bytes.insert(send.bytes.end(), bytes.begin(), bytes.end());
+    }
+    send.counts[q] = send.bytes.size() - before;
+  }
+  const RankBytes received = comm.all_to_all(send);
+
+  HaloPlan plan;
+  plan.send.resize(ranks);
+  // needed[i] is written only by the thread that tests i's group.
+  std::vector<std::uint8_t> needed(n, 0);
+  std::size_t at = 0;
+  for (std::size_t q = 0; q < ranks; ++q) {
+    const std::span<const ReachBox> theirs =
+        view_as<ReachBox>(std::span(received.bytes).subspan(at, received.counts[q]));
+    at += received.counts[q];
+    if (theirs.empty()) continue;
+#pragma omp parallel for schedule(dynamic, 16)
+    for (std::size_t g = 0; g < group_count; ++g) {
+      if (!within_reach(groups[g], rank_boxes[q], grow)) continue;
+      for (const ReachBox& box : theirs) {
+        if (!within_reach(groups[g], box, grow)) continue;
+        for (std::size_t i = first[g]; i < first[g + 1]; ++i) {
+          const double reach = grow * (smoothing_length[i] + box.h_max);
+          if (squared_gap(x[i], y[i], z[i], box) < reach * reach) needed[i] = 1;
+        }
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!needed[i]) continue;
+      plan.send[q].push_back(std::uint32_t(i));
+      needed[i] = 0;
+    }
+  }
+  return plan;
+}
+
+OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, const HaloPlan& plan,
+                        const Communicator& comm) {
+  if (keys.size() != particles.size())
+    throw std::invalid_argument("insert_halos: one key per particle expected");
+  if (plan.send.size() != std::size_t(comm.size()))
+    throw std::invalid_argument("insert_halos: the halo plan is for another rank count");
+  const std::size_t bytes_per_particle = common_particle_bytes(particles, comm);
+  RankBytes send;
+  send.counts.resize(plan.send.size());
+  for (std::size_t q = 0; q < plan.send.size(); ++q) {
+    const std::size_t before = send.bytes.size();
+    pack(particles, keys, plan.send[q], send.bytes);
+    send.counts[q] = send.bytes.size() - before;
+  }
+  const RankBytes received = comm.all_to_all(send);
+
+  // Lower ranks' halos, the owned particles, higher ranks' halos: the order along the curve.
+  std::vector<std::byte> owned_bytes;
+  pack(particles, keys, all_indices(particles.size()), owned_bytes);
+  Particles local = empty_like(particles);
+  std::vector<std::uint64_t> local_keys;
+  OwnedRange owned;
+  std::size_t at = 0;
+  for (std::size_t q = 0; q < received.counts.size(); ++q) {
+    if (q == std::size_t(comm.rank())) {
+      owned.begin = local.size();
+      unpack_append(owned_bytes, particles.size(), local, local_keys);
+      owned.end = local.size();
+    }
+    unpack_append(std::span(received.bytes).subspan(at, received.counts[q]),
+                  received.counts[q] / bytes_per_particle, local, local_keys);
+    at += received.counts[q];
+  }
+  if (!std::is_sorted(local_keys.begin(), local_keys.end()))
+    throw std::logic_error("insert_halos: the particles are not split along the curve (migrate first)");
+  particles = std::move(local);
+  keys = std::move(local_keys);
+  return owned;
+}
+
+void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned) {
+  if (owned.begin > owned.end || owned.end > particles.size() || keys.size() != particles.size())
+    throw std::invalid_argument("remove_halos: owned range outside the particles");
+  const auto keep = [&](auto& field) {
+    field.erase(field.begin() + std::ptrdiff_t(owned.end), field.end());
+    field.erase(field.begin(), field.begin() + std::ptrdiff_t(owned.begin));
+  };
+  keep(keys);
+  particles.for_each_field([&](std::string_view, auto& field) { keep(field); });
+}
+
+}  // namespace craterkit::sph
