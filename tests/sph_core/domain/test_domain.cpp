@@ -22,6 +22,7 @@
 #include "craterkit/sph/domain/particle_exchange.hpp"
 #include "craterkit/sph/neighbours/neighbour_search.hpp"
 #include "craterkit/sph/particles/space_filling_curve.hpp"
+#include "craterkit/sph/rates/rates.hpp"
 #include "craterkit/sph/rates/summation_density.hpp"
 
 namespace craterkit::sph {
@@ -280,6 +281,83 @@ TEST(Halos, AcrossMirrorPlanesAsInAQuarterDomainImpact) {
   quarter.upper = {1.0, 1.0, 1.0};
   quarter.mirror = {true, true, false};
   expect_serial_density(0.1, quarter);
+}
+
+// A moving, stressed solid state on the graded block, a function of each particle's id and position only, so
+// that every rank gives its particles and halos the values the serial run gives the same particles.
+Particles moving_solid(std::size_t per_axis) {
+  Particles p = graded_block(per_axis, 5);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double phase = 0.37 * double(p.id[i]);
+    p.vx[i] = std::sin(phase) - p.x[i];
+    p.vy[i] = std::cos(phase) + 0.5 * p.y[i];
+    p.vz[i] = std::sin(2 * phase) * p.z[i];
+    p.density[i] = 1000.0 * (1.0 + 0.1 * std::sin(3 * phase));
+    p.pressure[i] = 1e3 * (1.0 + p.x[i] + std::cos(phase));
+    p.sound_speed[i] = 50.0 + 10.0 * std::sin(phase);
+    p.viscosity_alpha[i] = 1.0;
+    p.stress_xx[i] = 100.0 * std::sin(phase);
+    p.stress_xy[i] = 50.0 * std::cos(phase);
+    p.stress_yz[i] = -30.0 * p.z[i];
+  }
+  return p;
+}
+
+struct Rates {
+  std::vector<double> ax, ay, az, density_rate, energy_rate;
+};
+
+// The solid rate pass (corrected stress divergence, viscosity, gravity) over every particle of p.
+Rates solid_rates(Particles& p, const NeighbourLists& lists, const Box& box) {
+  RateWorkspace workspace;
+  workspace.inverse_density.resize(p.size());
+  workspace.volume.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    workspace.inverse_density[i] = 1.0 / p.density[i];
+    workspace.volume[i] = p.mass[i] / p.density[i];
+  }
+  RateOptions options;
+  options.solid = true;
+  options.gravity = {0.0, 0.0, -1.0};
+  options.mirror = mirror_planes(box);
+  VelocityGradients gradients;
+  compute_rates(p, PairList{lists.offsets, lists.neighbours, lists.ends}, options, workspace, &gradients);
+  return {p.acceleration_x, p.acceleration_y, p.acceleration_z, p.density_rate, p.energy_rate};
+}
+
+// The engine's main pair pass, not only the density sum: every rate of every owned particle equals the serial
+// engine's bit for bit, in a quarter domain with the block steps' skin.
+TEST(Halos, SolidRatePassEqualsTheSerialEngineBitwise) {
+  const auto comm = Communicator::world();
+  Box quarter;
+  quarter.upper = {1.0, 1.0, 1.0};
+  quarter.mirror = {true, true, false};
+  const double skin = 0.1;
+  Particles all = moving_solid(12);
+  const CurveCube cube = bounding_cube(all.x, all.y, all.z);
+  std::vector<std::uint64_t> all_keys = keys_of(all, cube);
+  sort_along_curve(all, all_keys);
+  const Rates serial = solid_rates(all, sorted_lists(all, skin, quarter), quarter);
+  std::map<std::uint64_t, std::size_t> serial_index;
+  for (std::size_t i = 0; i < all.size(); ++i) serial_index[all.id[i]] = i;
+
+  Particles local = share_of(moving_solid(12), comm);
+  std::vector<std::uint64_t> keys = keys_of(local, global_bounding_cube(local.x, local.y, local.z, comm));
+  sort_along_curve(local, keys);
+  std::vector<double> work(local.size(), 1.0);
+  migrate(local, keys, split_by_work(keys, work, comm), comm);
+  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, skin, comm);
+  const OwnedRange owned = insert_halos(local, keys, plan, comm);
+  const Rates distributed = solid_rates(local, sorted_lists(local, skin, quarter), quarter);
+
+  std::size_t different = 0;
+  for (std::size_t i = owned.begin; i < owned.end; ++i) {
+    const std::size_t s = serial_index.at(local.id[i]);
+    different += distributed.ax[i] != serial.ax[s] || distributed.ay[i] != serial.ay[s] ||
+                 distributed.az[i] != serial.az[s] || distributed.density_rate[i] != serial.density_rate[s] ||
+                 distributed.energy_rate[i] != serial.energy_rate[s];
+  }
+  EXPECT_EQ(different, 0u) << "of " << owned.size() << " owned particles on rank " << comm.rank();
 }
 
 TEST(Migration, RangesForAnotherRankCountAreRefused) {
