@@ -6,6 +6,7 @@
 #include <limits>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <tuple>
 #include <type_traits>
@@ -302,6 +303,69 @@ OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, 
   particles = std::move(local);
   keys = std::move(local_keys);
   return owned;
+}
+
+void refresh_halos(Particles& particles, const HaloPlan& plan, const OwnedRange& owned,
+                   std::span<const std::string_view> fields, const Communicator& comm) {
+  if (plan.send.size() != std::size_t(comm.size()))
+    throw std::invalid_argument("refresh_halos: the halo plan is for another rank count");
+  if (owned.begin > owned.end || owned.end > particles.size())
+    throw std::invalid_argument("refresh_halos: owned range outside the particles");
+  for (const std::string_view name : fields) {
+    bool known = false;
+    particles.for_each_field([&](std::string_view field, const auto&) { known = known || field == name; });
+    if (!known) throw std::invalid_argument("refresh_halos: no particle field '" + std::string(name) + "'");
+  }
+  const auto named = [&](std::string_view field) {
+    return std::find(fields.begin(), fields.end(), field) != fields.end();
+  };
+
+  // The send lists index the owned particles as they were before insert_halos(): now they start at
+  // owned.begin.
+  RankBytes send;
+  send.counts.resize(plan.send.size());
+  for (std::size_t q = 0; q < plan.send.size(); ++q) {
+    const std::size_t before = send.bytes.size();
+    particles.for_each_field([&](std::string_view field, const auto& values) {
+      if (!named(field)) return;
+      using T = element_of<decltype(values)>;
+      for (const std::uint32_t i : plan.send[q]) {
+        const auto* bytes = reinterpret_cast<const std::byte*>(&values[owned.begin + i]);
+        send.bytes.insert(send.bytes.end(), bytes, bytes + sizeof(T));
+      }
+    });
+    send.counts[q] = send.bytes.size() - before;
+  }
+  const RankBytes received = comm.all_to_all(send);
+
+  // The halos of rank q sit where insert_halos() put them: lower ranks' before the owned range, in rank
+  // order, higher ranks' after it; each block field by field in the order of for_each_field.
+  std::size_t bytes_per_halo = 0;
+  particles.for_each_field([&](std::string_view field, const auto& values) {
+    if (named(field)) bytes_per_halo += sizeof(element_of<decltype(values)>);
+  });
+  const auto mismatch = [] {
+    return std::logic_error("refresh_halos: the halos are not those of this plan (insert_halos first)");
+  };
+  std::size_t slot = 0, at = 0;
+  for (std::size_t q = 0; q < received.counts.size(); ++q) {
+    if (q == std::size_t(comm.rank())) {
+      if (slot != owned.begin) throw mismatch();
+      slot = owned.end;
+    }
+    const std::size_t count = bytes_per_halo ? received.counts[q] / bytes_per_halo : 0;
+    if (slot + count > particles.size()) throw mismatch();
+    const std::byte* source = received.bytes.data() + at;
+    particles.for_each_field([&](std::string_view field, auto& values) {
+      if (!named(field)) return;
+      using T = element_of<decltype(values)>;
+      if (count) std::memcpy(values.data() + slot, source, count * sizeof(T));
+      source += count * sizeof(T);
+    });
+    slot += count;
+    at += received.counts[q];
+  }
+  if (bytes_per_halo && slot != particles.size()) throw mismatch();
 }
 
 void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned) {

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -358,6 +359,42 @@ TEST(Halos, SolidRatePassEqualsTheSerialEngineBitwise) {
                  distributed.energy_rate[i] != serial.energy_rate[s];
   }
   EXPECT_EQ(different, 0u) << "of " << owned.size() << " owned particles on rank " << comm.rank();
+}
+
+// Between two pair passes only the fields that changed travel: the halo copies take their owners' new values.
+TEST(Halos, RefreshSendsTheNamedFieldsOnly) {
+  const auto comm = Communicator::world();
+  const Particles all = graded_block(12, 6);
+  Particles local = share_of(all, comm);
+  std::vector<std::uint64_t> keys = keys_of(local, global_bounding_cube(local.x, local.y, local.z, comm));
+  sort_along_curve(local, keys);
+  std::vector<double> work(local.size(), 1.0);
+  migrate(local, keys, split_by_work(keys, work, comm), comm);
+  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, 0.1, comm);
+  const OwnedRange owned = insert_halos(local, keys, plan, comm);
+  // A step of the owners: positions and densities change; the halos still hold the old values.
+  for (std::size_t i = owned.begin; i < owned.end; ++i) {
+    local.x[i] += 1e-3 * std::sin(double(local.id[i]));
+    local.density[i] = 2000.0 + double(local.id[i]);
+    local.mass[i] = -1.0;  // changed, but not sent
+  }
+  const std::array<std::string_view, 2> fields{"x", "density"};
+  refresh_halos(local, plan, owned, fields, comm);
+  const std::array<std::string_view, 1> unknown{"temperature"};
+  EXPECT_THROW(refresh_halos(local, plan, owned, unknown, comm), std::invalid_argument);
+
+  std::size_t stale = 0, overwritten = 0;
+  for (std::size_t i = 0; i < local.size(); ++i) {
+    if (i >= owned.begin && i < owned.end) continue;
+    const std::uint64_t id = local.id[i];
+    stale += local.x[i] != all.x[id] + 1e-3 * std::sin(double(id)) || local.density[i] != 2000.0 + double(id);
+    overwritten += local.mass[i] != all.mass[id];
+  }
+  EXPECT_EQ(stale, 0u);
+  EXPECT_EQ(overwritten, 0u);
+  if (comm.size() > 1) {
+    EXPECT_GT(local.size(), owned.size());
+  }
 }
 
 TEST(Migration, RangesForAnotherRankCountAreRefused) {

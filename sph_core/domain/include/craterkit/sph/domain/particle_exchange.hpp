@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "craterkit/sph/domain/communicator.hpp"
@@ -54,6 +55,14 @@ struct HaloPlan {
 // where the owned particles are now. Collective.
 OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, const HaloPlan& plan,
                         const Communicator& comm);
+
+// Sends the current values of the named fields (Particles::for_each_field names, e.g. "x", "density") of the
+// particles `plan` sends into the halo copies that insert_halos() made with the same plan: between two pair
+// passes of one step only the fields that changed need to travel, not the 347 bytes of a whole particle.
+// `owned` is what insert_halos() returned; every rank must name the same fields. Throws std::invalid_argument
+// for an unknown field name (on every rank: the names are checked before any exchange). Collective.
+void refresh_halos(Particles& particles, const HaloPlan& plan, const OwnedRange& owned,
+                   std::span<const std::string_view> fields, const Communicator& comm);
 
 // Removes the halos again: only the owned range stays (of particles and keys).
 void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned);
