@@ -1,9 +1,10 @@
 // Halo sizes and message counts of the domain decomposition (docs/parallel.md) for a particle file:
 //   mpirun -n R bench_domain_halos FILE.h5 [SKIN]
-// Every rank reads the file and keeps every R-th particle, then the particles are split along the curve by
-// work (1 / time_step: a particle costs one update per step of its own, the block time steps' measure),
-// migrated, and their halos found with the neighbour search's skin (default 0.1, the engine's with block time
-// steps). Prints one line per rank and a summary. Counts, not times: run with more ranks than cores
+// Every rank reads the file and keeps every R-th particle (not ejected), then the particles are split along
+// the curve by work (1 / time_step: a particle costs one update per step of its own, the block time steps'
+// measure), migrated, and their halos found with the neighbour search's skin (default 0.1, the engine's with
+// block time steps). Prints one line per rank and a summary. Counts, not times: run with more ranks than
+// cores
 // (--oversubscribe) to see how the halos grow with R.
 #include <algorithm>
 #include <cstdio>
@@ -21,10 +22,12 @@ using namespace craterkit::sph;
 
 namespace {
 
+// Every R-th particle that takes part in the hydrodynamics (ejected particles are left out, as by the
+// solver).
 Particles every_rth(Particles all, const Communicator& comm) {
   std::vector<std::uint32_t> order;
   for (std::size_t i = std::size_t(comm.rank()); i < all.size(); i += std::size_t(comm.size()))
-    order.push_back(std::uint32_t(i));
+    if (!(all.flags[i] & particle_ejected)) order.push_back(std::uint32_t(i));
   const std::size_t kept = order.size();
   std::vector<char> taken(all.size(), 0);
   for (const auto i : order) taken[i] = 1;
