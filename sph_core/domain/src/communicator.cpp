@@ -59,10 +59,6 @@ MpiSession::~MpiSession() {
   if (!finalized) MPI_Finalize();
 }
 
-std::size_t RankBytes::offset(int rank) const {
-  return std::accumulate(counts.begin(), counts.begin() + rank, std::size_t{0});
-}
-
 Communicator Communicator::world() {
   int rank = 0, size = 1;
   check(MPI_Comm_rank(MPI_COMM_WORLD, &rank), "MPI_Comm_rank");
@@ -72,11 +68,6 @@ Communicator Communicator::world() {
 
 void Communicator::sum(std::span<double> values) const {
   check(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD),
-        "MPI_Allreduce (sum)");
-}
-
-void Communicator::sum(std::span<std::uint64_t> values) const {
-  check(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD),
         "MPI_Allreduce (sum)");
 }
 
@@ -131,10 +122,6 @@ RankBytes Communicator::all_to_all(const RankBytes& send) const {
                       receive_counts.data(), receive_offsets.data(), MPI_BYTE, MPI_COMM_WORLD),
         "MPI_Alltoallv");
   return out;
-}
-
-void Communicator::barrier() const {
-  check(MPI_Barrier(MPI_COMM_WORLD), "MPI_Barrier");
 }
 
 }  // namespace craterkit::sph

@@ -26,8 +26,6 @@ class MpiSession {
 struct RankBytes {
   std::vector<std::byte> bytes;
   std::vector<std::size_t> counts;  // bytes per rank, size() == ranks
-
-  [[nodiscard]] std::size_t offset(int rank) const;
 };
 
 // MPI_COMM_WORLD. Every member function except rank() and size() is collective: all ranks call it in the
@@ -42,7 +40,6 @@ class Communicator {
   // Element-wise sum, minimum or maximum over the ranks, in place (MPI_Allreduce). The sum of doubles is
   // reduced in rank order by MPI's reduction; bitwise reproducible for a given rank count, not across counts.
   void sum(std::span<double> values) const;
-  void sum(std::span<std::uint64_t> values) const;
   void min(std::span<double> values) const;
   void max(std::span<double> values) const;
   // True on every rank when it is true on every rank.
@@ -53,8 +50,6 @@ class Communicator {
   // Personalised exchange (MPI_Alltoallv): send.counts[r] bytes go to rank r; the result holds what each rank
   // sent here, in rank order.
   [[nodiscard]] RankBytes all_to_all(const RankBytes& send) const;
-
-  void barrier() const;
 
  private:
   Communicator(int rank, int size) : rank_(rank), size_(size) {}
