@@ -1,16 +1,39 @@
 // craterkit: command-line entry point. Exit status: 0 success, 2 bad arguments or input (the message
 // names the flag, key or table cell, the value and what is allowed), 1 any other failure.
 #include <algorithm>
+#include <chrono>
 #include <exception>
 #include <iostream>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 
 #include "command_registry.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit_version.hpp"
+#include "processes.hpp"
 
 int main(int argc, char** argv) {
+  const craterkit::cli::Processes processes(argc, argv);  // MPI, when started by mpirun
+  using craterkit::cli::Processes;
+  // Over several processes a bad input is everyone's (each read the same files): process 0 says it. Any
+  // other failure may be one process's alone, while the others wait for it: it says so with its rank and the
+  // whole job ends.
+  const auto failed = [](int status, const char* what, const std::exception& e) {
+    const bool several = Processes::count() > 1;
+    if (status == 2 && several && Processes::rank() != 0) {
+      std::this_thread::sleep_for(std::chrono::seconds(2));  // process 0 says it and ends the job first
+      Processes::end_all_if_several(status);
+      return status;
+    }
+    std::cerr << "craterkit: " << what;
+    if (several && status != 2)
+      std::cerr << " (process " << Processes::rank() << " of " << Processes::count() << ")";
+    std::cerr << ": " << e.what() << "\n";
+    std::cerr.flush();
+    Processes::end_all_if_several(status);
+    return status;
+  };
   CLI::App app{"craterkit: impact cratering on small, low-gravity asteroids (SPH, scaling, chronology)",
                "craterkit"};
   app.set_version_flag("--version", std::string("craterkit ") + CRATERKIT_VERSION);
@@ -34,11 +57,9 @@ int main(int argc, char** argv) {
     std::cerr << "Run with --help for usage.\n";
     return 2;
   } catch (const craterkit::InputError& e) {
-    std::cerr << "craterkit: error: " << e.what() << "\n";
-    return 2;
+    return failed(2, "error", e);
   } catch (const std::exception& e) {
-    std::cerr << "craterkit: failed: " << e.what() << "\n";
-    return 1;
+    return failed(1, "failed", e);
   }
   return 0;
 }

@@ -18,6 +18,7 @@
 #include "craterkit/sph/run/standard_problem_config.hpp"
 #include "json_output.hpp"
 #include "output_checks.hpp"
+#include "processes.hpp"
 
 namespace craterkit::cli {
 namespace {
@@ -200,7 +201,8 @@ void run_simulate(const SimulateOptions& given) {
     // Without --out a run still keeps its output: a folder named after the configuration, in the current
     // directory, said on stderr before the run starts.
     options.out = fs::path(options.config).stem().string() + "-run";
-    std::cerr << "craterkit: no --out given: writing the output to " << options.out << "/\n";
+    if (Processes::rank() == 0)
+      std::cerr << "craterkit: no --out given: writing the output to " << options.out << "/\n";
   }
   std::error_code ec;
   const bool new_folder = !options.out.empty() && !options.dry_run && !fs::exists(options.out, ec);
@@ -230,6 +232,11 @@ void run_simulate_checked(const SimulateOptions& options) {
   run.progress = !options.quiet;
   if (setup == "impact") {
     const impact::ImpactConfig config = impact::parse_impact_config(root);
+    if (Processes::count() > 1 && !options.dry_run) {
+      throw InputError(options.config +
+                       ": an impact cannot run over several processes yet (its late-stage switch, ejecta and "
+                       "crater measurement are serial); run it without mpirun (docs/parallel.md)");
+    }
     run.configuration = root.values_read();
     if (!options.dry_run && !options.out.empty()) prepare_output_folder(options);
     if (options.dry_run) {
@@ -248,13 +255,20 @@ void run_simulate_checked(const SimulateOptions& options) {
   }
   const sph::StandardProblemConfig config = sph::parse_standard_problem_config(root);
   run.configuration = root.values_read();
-  if (!options.dry_run && !options.out.empty()) prepare_output_folder(options);
+  if (!options.dry_run && !options.out.empty() && Processes::rank() == 0) prepare_output_folder(options);
+  // Under mpirun: one simulation over the processes; process 0 writes and prints.
+  const std::unique_ptr<sph::Decomposition> decomposition = Processes::decomposition();
+  run.decomposition = decomposition.get();
+  Processes::wait_for_all();
   if (options.dry_run) {
-    print_dry_run(config.simulation.name, setup, sph::build_standard_problem(config),
-                  config.simulation.run.end_time, nullptr, options.json);
+    if (Processes::rank() == 0) {
+      print_dry_run(config.simulation.name, setup, sph::build_standard_problem(config),
+                    config.simulation.run.end_time, nullptr, options.json);
+    }
     return;
   }
   const auto summary = sph::run_standard_problem(config, run);
+  if (Processes::rank() != 0) return;
   if (options.json) {
     craterkit::cli::print_json(summary_json(summary));
     return;

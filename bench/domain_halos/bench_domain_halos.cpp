@@ -68,8 +68,8 @@ int run(int argc, char** argv) {
   };
   migrate(particles, keys, split_by_work(keys, work_of(particles), comm), comm);
   const std::vector<double> work = work_of(particles);
-  const HaloPlan plan =
-      find_halos(particles.x, particles.y, particles.z, particles.smoothing_length, skin, comm);
+  const HaloPlan plan = find_halos(particles.x, particles.y, particles.z, particles.smoothing_length, skin,
+                                   {0.0, 0.0, 0.0}, comm);
   std::size_t sent = 0, send_messages = 0;
   for (const auto& list : plan.send) {
     sent += list.size();

@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <climits>
+#include <cstdlib>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -100,6 +101,29 @@ RankBytes Communicator::all_gather(std::span<const std::byte> bytes) const {
   check(MPI_Allgatherv(bytes.data(), int(mine), MPI_BYTE, out.bytes.data(), counts.data(), offsets.data(),
                        MPI_BYTE, MPI_COMM_WORLD),
         "MPI_Allgatherv");
+  return out;
+}
+
+void Communicator::abort(int status) const {
+  MPI_Abort(MPI_COMM_WORLD, status);
+  std::exit(status);  // MPI_Abort does not return; if it did, end this rank at least
+}
+
+RankBytes Communicator::gather(std::span<const std::byte> bytes) const {
+  const std::uint64_t mine = bytes.size();
+  std::vector<std::uint64_t> sizes(std::size_t(size_), 0);
+  check(MPI_Gather(&mine, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Gather");
+  RankBytes out;
+  std::vector<int> counts, offsets;
+  if (rank_ == 0) {
+    out.counts.assign(sizes.begin(), sizes.end());
+    counts = to_int(out.counts, "MPI_Gatherv");
+    offsets = displacements(counts);
+    out.bytes.resize(std::accumulate(out.counts.begin(), out.counts.end(), std::size_t{0}));
+  }
+  check(MPI_Gatherv(bytes.data(), int(mine), MPI_BYTE, out.bytes.data(), counts.data(), offsets.data(),
+                    MPI_BYTE, 0, MPI_COMM_WORLD),
+        "MPI_Gatherv");
   return out;
 }
 

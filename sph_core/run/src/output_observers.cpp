@@ -65,20 +65,27 @@ bool EjectaLog::after_step(Simulation& simulation) {
   return false;
 }
 
+// Over several processes every one sums its share (conserved() is collective); process 0 writes.
 bool ConservationRecorder::start(Simulation& simulation, const RunAttributes* checkpoint) {
   if (checkpoint != nullptr) {
-    log_ = std::make_unique<ConservationLog>(path_, simulation.step_count(),
-                                             expected_rows(checkpoint, "conservation_rows"));
+    if (simulation.writes_output()) {
+      log_ = std::make_unique<ConservationLog>(path_, simulation.step_count(),
+                                               expected_rows(checkpoint, "conservation_rows"));
+    }
   } else {
-    log_ = std::make_unique<ConservationLog>(path_);
-    log_->append(simulation.conserved());
+    const ConservedQuantities initial = simulation.conserved();
+    if (simulation.writes_output()) {
+      log_ = std::make_unique<ConservationLog>(path_);
+      log_->append(initial);
+    }
   }
   return false;
 }
 
 bool ConservationRecorder::after_step(Simulation& simulation) {
   auto scope = simulation.timers().measure("output");
-  log_->append(simulation.conserved());
+  const ConservedQuantities now = simulation.conserved();
+  if (log_) log_->append(now);
   return false;
 }
 
@@ -123,8 +130,10 @@ void SnapshotWriter::write(Simulation& simulation, std::size_t index) {
   auto scope = simulation.timers().measure("output");
   char name[32];
   std::snprintf(name, sizeof name, "snap_%06zu.h5", index);
-  write_snapshot(directory_ / name, simulation.particles(), run_attributes(simulation, record_),
-                 compression_);
+  Particles gathered;
+  const Particles& whole = simulation.whole_particles(gathered);  // collective over several processes
+  if (!simulation.writes_output()) return;
+  write_snapshot(directory_ / name, whole, run_attributes(simulation, record_), compression_);
   write_time_series_xdmf(directory_ / "snapshots.xdmf", find_snapshots(directory_));
   written_.push_back((directory_ / name).string());
 }

@@ -54,8 +54,10 @@ class Checkpoints {
 
   // True when a checkpoint was written.
   bool write_if_due(Simulation& simulation) {
+    // Over several processes the clocks differ: due when due on any, so that all write it together.
     if (output_.checkpoint_interval_seconds > 0 &&
-        std::chrono::duration<double>(Clock::now() - last_).count() >= output_.checkpoint_interval_seconds) {
+        simulation.any_process(std::chrono::duration<double>(Clock::now() - last_).count() >=
+                               output_.checkpoint_interval_seconds)) {
       wall_clock_due_ = true;
     }
     const bool by_steps = step_interval_ > 0 && simulation.step_count() % step_interval_ == 0;
@@ -71,7 +73,9 @@ class Checkpoints {
     auto scope = simulation.timers().measure("output");
     RunAttributes a = run_attributes(simulation, record_);
     for (const RunObserver* o : observers_) o->save(a);
-    write_checkpoint(path_, simulation.particles(), a);
+    Particles gathered;
+    const Particles& whole = simulation.whole_particles(gathered);
+    if (simulation.writes_output()) write_checkpoint(path_, whole, a);
     // A resumed run builds its neighbour lists afresh: so does this one, to follow the same sequence (the
     // next step's sort does that anyway when it comes).
     if (!simulation.next_step_sorts()) simulation.force_neighbour_rebuild();
@@ -190,7 +194,8 @@ void remove_stale_temporaries(const std::filesystem::path& directory) {
 // A Simulation continued from the checkpoint (whose attributes go to *checkpoint).
 std::unique_ptr<Simulation> resume_simulation(const SimulationConfig& config, ProblemSetup problem,
                                               const RunAttributes& record, const std::filesystem::path& path,
-                                              const std::string& configuration, RunAttributes* checkpoint) {
+                                              const std::string& configuration, RunAttributes* checkpoint,
+                                              Decomposition* decomposition) {
   Particles particles = read_checkpoint(path, checkpoint);
   const auto setup = checkpoint->texts.find("setup");
   const std::string expected = record.texts.count("setup") != 0 ? record.texts.at("setup") : "?";
@@ -203,7 +208,7 @@ std::unique_ptr<Simulation> resume_simulation(const SimulationConfig& config, Pr
   check_resumed_material_files(path, *checkpoint, material_files(problem));
   try {
     return std::make_unique<Simulation>(config.solver, std::move(problem), std::move(particles),
-                                        read_solver_state(*checkpoint, "checkpoint"));
+                                        read_solver_state(*checkpoint, "checkpoint"), decomposition);
   } catch (const std::invalid_argument& e) {
     throw InputError(path.string() + ": the checkpoint's particles cannot be continued: " + e.what());
   }
@@ -222,15 +227,15 @@ void share_processors(ThreadShare& share, double wall_seconds, const RunOptions&
 void summarise(const Simulation& sim, RunSummary& summary) {
   const auto& p = sim.particles();
   const auto final_state = sim.conserved();
-  summary.particles = p.size();
+  summary.particles = sim.total_particles();
   summary.steps = sim.step_count();
   summary.time = sim.time();
   summary.mean_neighbours = sim.mean_neighbours();
   summary.relative_energy_error = relative_energy_error(sim.initial_conserved(), final_state);
   summary.relative_momentum_error = relative_momentum_error(sim.initial_conserved(), final_state);
   const auto& gravity = sim.parameters().gravity;
-  const bool has_fixed =
-      std::any_of(p.flags.begin(), p.flags.end(), [](std::uint8_t f) { return (f & particle_fixed) != 0; });
+  const bool has_fixed = sim.any_process(
+      std::any_of(p.flags.begin(), p.flags.end(), [](std::uint8_t f) { return (f & particle_fixed) != 0; }));
   summary.momentum_conserved =
       gravity[0] == 0.0 && gravity[1] == 0.0 && gravity[2] == 0.0 && !has_fixed && !sim.box().any_mirror();
   summary.bytes_per_particle = sim.bytes_per_particle();
@@ -263,7 +268,8 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   const bool files = !options.output_directory.empty();
   const fs::path out = options.output_directory;
   if (files) check_checkpoint_timing(config, "");
-  if (files) {
+  const bool writer = options.decomposition == nullptr || options.decomposition->rank() == 0;
+  if (files && writer) {
     fs::create_directories(out);
     remove_stale_temporaries(out);
   }
@@ -282,9 +288,10 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   const bool logs_ejecta = files && problem.ejection.radius > 0.0;
   summary.resumed = files && options.resume && fs::exists(out / "checkpoint.h5");
   RunAttributes checkpoint_attributes;
-  auto sim = summary.resumed ? resume_simulation(config, std::move(problem), record, out / "checkpoint.h5",
-                                                 options.configuration, &checkpoint_attributes)
-                             : std::make_unique<Simulation>(config.solver, std::move(problem));
+  auto sim = summary.resumed
+                 ? resume_simulation(config, std::move(problem), record, out / "checkpoint.h5",
+                                     options.configuration, &checkpoint_attributes, options.decomposition)
+                 : std::make_unique<Simulation>(config.solver, std::move(problem), options.decomposition);
 
   // The observers, in the order they act after a step.
   LateStageReport late_stage_report;
@@ -301,7 +308,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
                           record, observers);
 
   ProgressOptions progress_options;
-  progress_options.enabled = options.progress;
+  progress_options.enabled = options.progress && writer;
   progress_options.end_time = config.run.end_time;
   if (sim->problem().late_stage.planned())
     progress_options.stage_end_time = sim->problem().late_stage.transition_time;

@@ -51,6 +51,21 @@ void Simulation::configure() {
                      ": the artificial stress acts on solids, and no material of this problem has strength "
                      "(set 0 or leave the key out)");
   }
+  if (decomposition_ != nullptr) {
+    if (parameters_.time_step.block_levels > 0) {
+      throw InputError("time_step.block_levels = " + std::to_string(parameters_.time_step.block_levels) +
+                       ": a run over several processes takes the global time step for now (set 0, or run "
+                       "without mpirun)");
+    }
+    if (problem_.ejection.radius > 0.0) {
+      throw InputError("ejection radius " + format_number(problem_.ejection.radius) +
+                       " m: a run over several processes cannot remove ejecta yet (run without mpirun)");
+    }
+    if (problem_.late_stage.planned()) {
+      throw InputError(
+          "a run over several processes cannot switch to the late stage yet (run without mpirun)");
+    }
+  }
   problem_.particles.set_solid_fields(rate_options_.solid || porous_);
   problem_.particles.shrink_to_fit();
   // Ejected particles (e.g. from a checkpoint) stay behind the active ones.
@@ -135,20 +150,85 @@ void Simulation::eject() {
   force_rebuild_ = true;
 }
 
-Simulation::Simulation(SolverParameters parameters, ProblemSetup problem)
+void Simulation::add_halos() {
+  auto& p = problem_.particles;
+  auto scope = timers_.measure("halos");
+  // Lists are built afresh every evaluation, so halos within the support suffice; the small skin only keeps
+  // pairs at the edge of the support (equal to round-off) from being missed.
+  constexpr double halo_skin = 1e-6;
+  owned_ = decomposition_->add_halos(p, halo_skin, rate_options_.period);
+  active_ = p.size();
+  force_rebuild_ = true;
+  owned_list_.resize(owned_.size());
+  for (std::size_t k = 0; k < owned_.size(); ++k)
+    owned_list_[k] = static_cast<std::uint32_t>(owned_.begin + k);
+}
+
+void Simulation::take_share_of_the_particles() {
+  if (decomposition_ == nullptr) return;
+  auto& p = problem_.particles;
+  decomposition_->take_share(p);
+  const std::vector<double> equal_work(p.size(), 1.0);
+  decomposition_->distribute(p, equal_work);
+  active_ = p.size();
+}
+
+const Particles& Simulation::whole_particles(Particles& gathered) {
+  if (decomposition_ == nullptr) return problem_.particles;
+  gathered = decomposition_->gather(problem_.particles);
+  return gathered;
+}
+
+bool Simulation::any_process(bool value) const {
+  if (decomposition_ == nullptr) return value;
+  std::array<double, 1> none{value ? 0.0 : 1.0};
+  decomposition_->min(none);
+  return none[0] == 0.0;
+}
+
+std::size_t Simulation::total_particles() const {
+  if (decomposition_ == nullptr) return problem_.particles.size();
+  std::array<double, 1> count{static_cast<double>(problem_.particles.size())};
+  decomposition_->sum(count);
+  return static_cast<std::size_t>(count[0]);
+}
+
+void Simulation::drop_halos() {
+  auto scope = timers_.measure("halos");
+  const auto keep_owned = [this](auto& values) {
+    if (values.size() < owned_.end) return;
+    values.erase(values.begin() + static_cast<std::ptrdiff_t>(owned_.end), values.end());
+    values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(owned_.begin));
+  };
+  keep_owned(rate_workspace_.neighbour_count);
+  keep_owned(rate_workspace_.signal_time);
+  keep_owned(shear_modulus_);
+  decomposition_->remove_halos(problem_.particles);
+  active_ = problem_.particles.size();
+  owned_ = {0, active_};
+  force_rebuild_ = true;
+}
+
+Simulation::Simulation(SolverParameters parameters, ProblemSetup problem, Decomposition* decomposition)
     : parameters_(std::move(parameters)),
       problem_(std::move(problem)),
-      search_(parameters_.neighbours.search) {
+      search_(parameters_.neighbours.search),
+      decomposition_(decomposition) {
   configure();
+  take_share_of_the_particles();
   update_smoothing_length(problem_.particles, parameters_.smoothing);
   if (rate_options_.solid) {
     // The first force needs the correction matrices of the initial state (later ones come from the rate
-    // pass before, gradient_correction.hpp).
+    // pass before, gradient_correction.hpp). Distributed: the owners' matrices reach the halos with the
+    // particles in the first rate evaluation.
+    if (decomposition_ != nullptr) add_halos();
     update_neighbours();
     update_equation_of_state();
+    const auto owned = decomposition_ != nullptr ? ParticleSelection::listed(owned_list_)
+                                                 : ParticleSelection::all(problem_.particles.size());
     compute_correction_matrices(problem_.particles, PairList{lists_.offsets, lists_.neighbours, lists_.ends},
-                                rate_options_, rate_workspace_,
-                                ParticleSelection::all(problem_.particles.size()));
+                                rate_options_, rate_workspace_, owned);
+    if (decomposition_ != nullptr) drop_halos();
   }
   evaluate_rates();
   limits_ = update_time_steps(problem_.particles, rate_workspace_.signal_time, time_step_parameters(),
@@ -158,12 +238,14 @@ Simulation::Simulation(SolverParameters parameters, ProblemSetup problem)
 }
 
 Simulation::Simulation(SolverParameters parameters, ProblemSetup problem, Particles particles,
-                       const SolverState& state)
+                       const SolverState& state, Decomposition* decomposition)
     : parameters_(std::move(parameters)),
       problem_(std::move(problem)),
-      search_(parameters_.neighbours.search) {
+      search_(parameters_.neighbours.search),
+      decomposition_(decomposition) {
   problem_.particles = std::move(particles);
   configure();
+  take_share_of_the_particles();
   for (const auto id : problem_.particles.material) {
     if (id >= problem_.materials.size()) {
       throw InputError("checkpoint: material id " + std::to_string(id) + " not defined by the configuration");
@@ -228,9 +310,18 @@ void Simulation::keep_neighbours() {
 }
 
 void Simulation::evaluate_rates() {
-  const auto all = ParticleSelection::all(problem_.particles.size());
+  if (decomposition_ == nullptr) {
+    const auto all = ParticleSelection::all(problem_.particles.size());
+    update_neighbours();
+    evaluate_rates(all, all);
+    return;
+  }
+  // The halos' own state (equation of state, returns) is evaluated here as their owners evaluate it, from
+  // the same values: the rates of the owned particles then read what the serial run reads.
+  add_halos();
   update_neighbours();
-  evaluate_rates(all, all);
+  evaluate_rates(ParticleSelection::listed(owned_list_), ParticleSelection::all(problem_.particles.size()));
+  drop_halos();
 }
 
 void Simulation::evaluate_rates(const ParticleSelection& rates_for, const ParticleSelection& state_for) {
@@ -239,6 +330,13 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
     auto scope = timers_.measure("density");
     compute_summation_density(p, PairList{lists_.offsets, lists_.neighbours, lists_.ends}, parameters_.kernel,
                               rate_options_.period, rate_options_.mirror);
+    scope.stop();
+    if (decomposition_ != nullptr) {
+      // A halo's sum misses the neighbours its owner has and this process has not: take the owner's.
+      auto halo_scope = timers_.measure("halos");
+      constexpr std::array<std::string_view, 1> summed{"density"};
+      decomposition_->refresh_halos(p, summed);
+    }
   }
   update_equation_of_state(state_for);
   {
@@ -268,6 +366,12 @@ double Simulation::next_block_length() const {
     if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
     shortest = std::min(shortest, p.time_step[i]);
     longest = std::max(longest, p.time_step[i]);
+  }
+  if (decomposition_ != nullptr) {
+    std::array<double, 2> extremes{shortest, -longest};
+    decomposition_->min(extremes);
+    shortest = extremes[0];
+    longest = -extremes[1];
   }
   if (!(longest > 0.0)) return std::min(shortest, parameters_.time_step.max_step);  // nothing moves
   const int levels = parameters_.time_step.block_levels;
@@ -402,7 +506,16 @@ void Simulation::step(double target_time) {
   }
   if (!(dt > 0.0)) throw std::runtime_error("time step not positive at t = " + std::to_string(time_));
 
-  if (next_step_sorts()) {
+  if (next_step_sorts() && decomposition_ != nullptr) {
+    auto scope = timers_.measure("sort");
+    // The re-split balances the pair work of the last evaluation (neighbours + 1 per particle).
+    std::vector<double> work(p.size(), 1.0);
+    for (std::size_t i = 0; i < std::min(work.size(), rate_workspace_.neighbour_count.size()); ++i)
+      work[i] += rate_workspace_.neighbour_count[i];
+    decomposition_->distribute(p, work);
+    active_ = p.size();
+    force_rebuild_ = true;
+  } else if (next_step_sorts()) {
     auto scope = timers_.measure("sort");
     curve_order(std::span<const double>(p.x).first(active_), std::span<const double>(p.y).first(active_),
                 std::span<const double>(p.z).first(active_), order_);
@@ -479,6 +592,27 @@ double Simulation::mean_neighbours() const {
 
 ConservedQuantities Simulation::conserved() const {
   auto q = measure_conserved(problem_.particles, parameters_.gravity);
+  if (decomposition_ != nullptr) {
+    std::array<double, 9> sums{q.mass,
+                               q.momentum_x,
+                               q.momentum_y,
+                               q.momentum_z,
+                               q.kinetic_energy,
+                               q.internal_energy,
+                               q.potential_energy,
+                               q.total_energy,
+                               q.absolute_momentum};
+    decomposition_->sum(sums);
+    q.mass = sums[0];
+    q.momentum_x = sums[1];
+    q.momentum_y = sums[2];
+    q.momentum_z = sums[3];
+    q.kinetic_energy = sums[4];
+    q.internal_energy = sums[5];
+    q.potential_energy = sums[6];
+    q.total_energy = sums[7];
+    q.absolute_momentum = sums[8];
+  }
   q.time = time_;
   q.step = step_;
   return q;

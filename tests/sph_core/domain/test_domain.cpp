@@ -29,6 +29,8 @@
 namespace craterkit::sph {
 namespace {
 
+constexpr std::array<double, 3> open_axes{0.0, 0.0, 0.0};  // no periodic axis
+
 // A jittered lattice with a graded spacing: fine near the origin, coarse far from it (like an impact's graded
 // target), so that equal work is not equal particle counts. h follows the local spacing. Solid fields on,
 // with values that identify the particle, so that migration must carry every field.
@@ -236,7 +238,7 @@ void expect_serial_density(double skin, const Box& box = {}) {
   for (std::size_t i = 0; i < local.size(); ++i) work[i] = 1.0 / local.smoothing_length[i];
   migrate(local, keys, split_by_work(keys, work, comm), comm);
   const std::size_t owned_count = local.size();
-  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, skin, comm);
+  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, skin, open_axes, comm);
   const OwnedRange owned = insert_halos(local, keys, plan, comm);
   const NeighbourLists lists = sorted_lists(local, skin, box);
   summation_density(local, lists, box);
@@ -347,7 +349,7 @@ TEST(Halos, SolidRatePassEqualsTheSerialEngineBitwise) {
   sort_along_curve(local, keys);
   std::vector<double> work(local.size(), 1.0);
   migrate(local, keys, split_by_work(keys, work, comm), comm);
-  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, skin, comm);
+  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, skin, open_axes, comm);
   const OwnedRange owned = insert_halos(local, keys, plan, comm);
   const Rates distributed = solid_rates(local, sorted_lists(local, skin, quarter), quarter);
 
@@ -370,7 +372,7 @@ TEST(Halos, RefreshSendsTheNamedFieldsOnly) {
   sort_along_curve(local, keys);
   std::vector<double> work(local.size(), 1.0);
   migrate(local, keys, split_by_work(keys, work, comm), comm);
-  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, 0.1, comm);
+  const HaloPlan plan = find_halos(local.x, local.y, local.z, local.smoothing_length, 0.1, open_axes, comm);
   const OwnedRange owned = insert_halos(local, keys, plan, comm);
   // A step of the owners: positions and densities change; the halos still hold the old values.
   for (std::size_t i = owned.begin; i < owned.end; ++i) {

@@ -47,6 +47,11 @@ class Communicator {
 
   // Every rank's bytes, to every rank (MPI_Allgatherv); counts[r] is what rank r contributed.
   [[nodiscard]] RankBytes all_gather(std::span<const std::byte> bytes) const;
+  // Ends every rank of the job with this exit status (MPI_Abort): for a failure that the other ranks, waiting
+  // in a collective call, cannot learn of.
+  [[noreturn]] void abort(int status) const;
+  // Every rank's bytes, to rank 0 (MPI_Gatherv); on the other ranks the result is empty.
+  [[nodiscard]] RankBytes gather(std::span<const std::byte> bytes) const;
   // Personalised exchange (MPI_Alltoallv): send.counts[r] bytes go to rank r; the result holds what each rank
   // sent here, in rank order.
   [[nodiscard]] RankBytes all_to_all(const RankBytes& send) const;

@@ -8,6 +8,7 @@
 // keys after them. That is the order a serial run holds the same particles in, so a pair loop that sums a
 // particle's neighbours in index order (lists sorted by entry, neighbour_search.hpp) adds the same terms in
 // the same order as the serial engine: results equal bit for bit.
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -16,6 +17,7 @@
 
 #include "craterkit/sph/domain/communicator.hpp"
 #include "craterkit/sph/domain/curve_split.hpp"
+#include "craterkit/sph/particles/owned_range.hpp"
 #include "craterkit/sph/particles/particles.hpp"
 
 namespace craterkit::sph {
@@ -25,12 +27,6 @@ namespace craterkit::sph {
 // theirs. Every rank's Particles must hold the same field set (solid_fields). Collective.
 void migrate(Particles& particles, std::vector<std::uint64_t>& keys, const KeyRanges& ranges,
              const Communicator& comm);
-
-// The owned particles' index range in a rank's particles.
-struct OwnedRange {
-  std::size_t begin = 0, end = 0;
-  [[nodiscard]] std::size_t size() const { return end - begin; }
-};
 
 // Which owned particles each other rank needs: send[q] lists (ascending) the particles of this rank within
 // reach of a particle of rank q, where reach means |x_i - x_j| < (1 + skin)(h_i + h_j), the neighbour
@@ -45,10 +41,13 @@ struct HaloPlan {
 // `group_size`, no wider than half their largest h), and every particle is tested against the boxes of the
 // groups it may reach. Complete: if |x_i - x_j| < (1 + skin)(h_i + h_j), j is in send[owner of i];
 // conservative: a few particles are sent that are no neighbour there (a box is wider than its particles).
-// Collective.
+// period: the box edge along each periodic axis, 0 for an open one (RateOptions::period); distances along a
+// periodic axis are minimum-image ones, as in the search. Mirror images need nothing extra: an image is never
+// nearer to a particle on the same side of the plane than the particle it reflects. Collective.
 [[nodiscard]] HaloPlan find_halos(std::span<const double> x, std::span<const double> y,
                                   std::span<const double> z, std::span<const double> smoothing_length,
-                                  double skin, const Communicator& comm, std::size_t group_size = 32);
+                                  double skin, const std::array<double, 3>& period, const Communicator& comm,
+                                  std::size_t group_size = 32);
 
 // Adds to `particles` (this rank's owned particles only, sorted along the curve) copies of the particles of
 // other ranks that `plan` sends here, in the layout above; `keys` (one per particle) grows with them. Returns
@@ -63,6 +62,11 @@ OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, 
 // for an unknown field name (on every rank: the names are checked before any exchange). Collective.
 void refresh_halos(Particles& particles, const HaloPlan& plan, const OwnedRange& owned,
                    std::span<const std::string_view> fields, const Communicator& comm);
+
+// Every rank's particles (no halos), to rank 0, in rank order: with the ranks' curve ranges, the order of a
+// serial run's curve sort. Empty on the other ranks. Collective.
+[[nodiscard]] Particles gather_particles(Particles& particles, const std::vector<std::uint64_t>& keys,
+                                         const Communicator& comm);
 
 // Removes the halos again: only the owned range stays (of particles and keys).
 void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned);

@@ -37,6 +37,12 @@ struct RunOptions {
   // checkpoint's and refuses (InputError naming the key and both values) a difference in any key but
   // resumable_configuration_key()s; empty: no comparison.
   std::string configuration;
+  // A run over several processes (solver/decomposition.hpp, docs/parallel.md): every process calls
+  // run_simulation() with the same arguments and this process's decomposition (which must outlive the call).
+  // The steps run distributed; process 0 writes every file (snapshots and checkpoints of the whole particle
+  // set, gathered to it, as a serial run writes them) and the progress line, and a checkpoint resumes on any
+  // number of processes. The output folder must be visible to every process (checkpoints are read by all).
+  Decomposition* decomposition = nullptr;
   // Called after each checkpoint written during the steps (not the final one) is on disk, with its step.
   std::function<void(std::uint64_t step)> after_checkpoint;
 };

@@ -39,6 +39,16 @@
 // flagged particle_ejected and moved behind the others; the neighbour search and the pair loops only see
 // the first active_particles() particles, the other phases skip the flag.
 //
+// Spread over processes (decomposition.hpp, docs/parallel.md): with a Decomposition the particles are those
+// this process owns along the space-filling curve. The curve sort becomes a re-split by work with migration
+// (Decomposition::distribute), every rate evaluation runs on the owned particles plus copies of the other
+// processes' particles within reach (halos, taken after the predictor, so that they carry the predicted
+// state; the summed density is sent again before the equation of state), and the time step and the conserved
+// quantities are reduced over the processes. The per-particle phases (predict, equation of state, correct)
+// run on the owned particles, so a distributed run follows the serial one to round-off (the pair sums add the
+// same terms, but the lists order them by each process's own octree). For now with the global time step
+// only, without ejection and without the late-stage switch (refused: InputError).
+//
 // The solver knows no files, configurations or scenarios: run/run_simulation.hpp drives it with outputs
 // around the steps, and a scenario (run/standard_problems.hpp, the impact library) builds its ProblemSetup.
 #include <cstdint>
@@ -54,6 +64,7 @@
 #include "craterkit/sph/rates/rates.hpp"
 #include "craterkit/sph/rates/stress_rates.hpp"
 #include "craterkit/sph/solver/conserved_quantities.hpp"
+#include "craterkit/sph/solver/decomposition.hpp"
 #include "craterkit/sph/solver/ejecta.hpp"
 #include "craterkit/sph/solver/phase_timers.hpp"
 #include "craterkit/sph/solver/problem.hpp"
@@ -79,12 +90,16 @@ struct SolverState {
 
 class Simulation {
  public:
-  // A fresh run at t = 0: evaluates the rates and the first time step.
-  Simulation(SolverParameters parameters, ProblemSetup problem);
+  // A fresh run at t = 0: evaluates the rates and the first time step. With a decomposition (which must
+  // outlive the Simulation) every process passes the whole problem, keeps its share of it and takes its
+  // piece of the curve; throws InputError for what a distributed run cannot do yet (see above).
+  Simulation(SolverParameters parameters, ProblemSetup problem, Decomposition* decomposition = nullptr);
   // Continues from a checkpoint: `problem` supplies the materials and the box, `particles` and `state`
   // (time, step, next time step, initial conserved quantities, late stage) the state.
-  Simulation(SolverParameters parameters, ProblemSetup problem, Particles particles,
-             const SolverState& state);
+  // With a decomposition every process passes the whole checkpoint: a run resumes on any number of
+  // processes.
+  Simulation(SolverParameters parameters, ProblemSetup problem, Particles particles, const SolverState& state,
+             Decomposition* decomposition = nullptr);
 
   // Advances one step, shortened so as not to pass target_time (the step then ends exactly on it).
   // Throws std::runtime_error if the time step collapses (not positive or not finite).
@@ -101,8 +116,10 @@ class Simulation {
   [[nodiscard]] const SolverParameters& parameters() const { return parameters_; }
   [[nodiscard]] PhaseTimers& timers() { return timers_; }
   // Interacting pairs (r < h_i + h_j) per particle in the last rate evaluation.
+  // (Distributed: of this process's particles.)
   [[nodiscard]] double mean_neighbours() const;
   [[nodiscard]] const ConservedQuantities& initial_conserved() const { return initial_; }
+  // Of all particles (distributed: summed over the processes; collective).
   [[nodiscard]] ConservedQuantities conserved() const;
   // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
   [[nodiscard]] double bytes_per_particle() const;
@@ -115,6 +132,19 @@ class Simulation {
   // Particles not ejected (they come first in the arrays).
   [[nodiscard]] std::size_t active_particles() const { return active_; }
   [[nodiscard]] const ProblemSetup& problem() const { return problem_; }
+
+  // Runs over several processes (all collective when distributed). The whole particle set for output: the
+  // particles themselves in a serial run; gathered into `gathered` on process 0 (empty elsewhere) in a
+  // distributed one.
+  [[nodiscard]] const Particles& whole_particles(Particles& gathered);
+  // Whether this process writes the run's files (serial, or process 0).
+  [[nodiscard]] bool writes_output() const {
+    return decomposition_ == nullptr || decomposition_->rank() == 0;
+  }
+  // True when `value` is true on some process: decisions that every process must take alike.
+  [[nodiscard]] bool any_process(bool value) const;
+  // Particles over all processes.
+  [[nodiscard]] std::size_t total_particles() const;
 
   // Late stage: whether the switch has happened, the largest Mach number just after it and since.
   [[nodiscard]] bool late_stage_active() const { return late_stage_active_; }
@@ -167,6 +197,11 @@ class Simulation {
   void eject();  // flags, records and moves ejecta behind the active particles
   void carry_stress_across_switch(const std::vector<double>& stress_factor);
   void cap_elastic_shear_strain();
+  // Distributed runs: the halos around the owned particles for one rate evaluation, and their removal (the
+  // per-particle scratch the correction reads follows the owned particles back to 0 .. n-1).
+  void add_halos();
+  void drop_halos();
+  void take_share_of_the_particles();  // distributed: this process's piece of the whole set
 
   SolverParameters parameters_;
   ProblemSetup problem_;
@@ -198,6 +233,9 @@ class Simulation {
   double mach_at_transition_ = 0.0;
   double late_stage_max_mach_ = 0.0;
   std::vector<EjectaRecord> new_ejecta_;
+  Decomposition* decomposition_ = nullptr;  // distributed runs only (not owned)
+  OwnedRange owned_{};                      // while halos are held
+  std::vector<std::uint32_t> owned_list_;   // owned_ as a selection
 };
 
 }  // namespace craterkit::sph

@@ -1,0 +1,95 @@
+#include "craterkit/sph/domain/mpi_decomposition.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <tuple>
+
+#include "craterkit/sph/domain/curve_split.hpp"
+#include "craterkit/sph/particles/space_filling_curve.hpp"
+
+namespace craterkit::sph {
+
+void MpiDecomposition::take_share(Particles& particles) {
+  const auto ranks = static_cast<std::size_t>(comm_.size());
+  const auto me = static_cast<std::size_t>(comm_.rank());
+  std::vector<std::uint32_t> order;
+  for (std::size_t i = me; i < particles.size(); i += ranks) order.push_back(static_cast<std::uint32_t>(i));
+  const std::size_t kept = order.size();
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    if (i % ranks != me) order.push_back(static_cast<std::uint32_t>(i));
+  particles.permute(order);
+  particles.resize(kept);
+  keys_.clear();
+  held_ = kept;
+  owned_ = {0, kept};
+}
+
+void MpiDecomposition::distribute(Particles& particles, std::span<const double> work) {
+  if (owned_.size() != particles.size() || owned_.begin != 0)
+    throw std::logic_error("MpiDecomposition::distribute: halos still held");
+  if (work.size() != particles.size())
+    throw std::invalid_argument("MpiDecomposition::distribute: one work value per particle needed");
+  const CurveCube cube = global_bounding_cube(particles.x, particles.y, particles.z, comm_);
+  std::vector<std::uint64_t> keys(particles.size());
+  morton_keys(particles.x, particles.y, particles.z, cube, keys);
+  // Sorted by (key, id) here, so that split_by_work sees ascending keys and migrate() keeps the order.
+  std::vector<std::uint32_t> order(particles.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return std::tie(keys[a], particles.id[a]) < std::tie(keys[b], particles.id[b]);
+  });
+  particles.permute(order);
+  keys_.resize(order.size());
+  std::vector<double> sorted_work(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    keys_[k] = keys[order[k]];
+    sorted_work[k] = work[order[k]];
+  }
+  migrate(particles, keys_, split_by_work(keys_, sorted_work, comm_), comm_);
+  held_ = particles.size();
+  owned_ = {0, held_};
+}
+
+OwnedRange MpiDecomposition::add_halos(Particles& particles, double skin,
+                                       const std::array<double, 3>& period) {
+  if (owned_.size() != particles.size() || owned_.begin != 0 || keys_.size() != particles.size())
+    throw std::logic_error("MpiDecomposition::add_halos: halos already held, or distribute() not called");
+  plan_ = find_halos(particles.x, particles.y, particles.z, particles.smoothing_length, skin, period, comm_);
+  owned_ = insert_halos(particles, keys_, plan_, comm_);
+  held_ = particles.size();
+  return owned_;
+}
+
+void MpiDecomposition::refresh_halos(Particles& particles, std::span<const std::string_view> fields) {
+  if (particles.size() != held_) throw std::logic_error("MpiDecomposition::refresh_halos: no halos held");
+  sph::refresh_halos(particles, plan_, owned_, fields, comm_);
+}
+
+void MpiDecomposition::remove_halos(Particles& particles) {
+  if (particles.size() != held_) throw std::logic_error("MpiDecomposition::remove_halos: no halos held");
+  sph::remove_halos(particles, keys_, owned_);
+  held_ = particles.size();
+  owned_ = {0, held_};
+}
+
+Particles MpiDecomposition::gather(Particles& particles) const {
+  if (particles.size() != held_ || owned_.size() != held_)
+    throw std::logic_error("MpiDecomposition::gather: halos held, or distribute() not called");
+  return gather_particles(particles, keys_, comm_);
+}
+
+double MpiDecomposition::halo_fraction() const {
+  std::array<double, 2> counts{0.0, 0.0};
+  for (const auto& to : plan_.send) counts[0] += static_cast<double>(to.size());
+  counts[1] = static_cast<double>(owned_.size());
+  comm_.sum(counts);
+  return counts[1] > 0.0 ? counts[0] / counts[1] : 0.0;
+}
+
+std::size_t MpiDecomposition::halo_destinations() const {
+  return static_cast<std::size_t>(
+      std::count_if(plan_.send.begin(), plan_.send.end(), [](const auto& to) { return !to.empty(); }));
+}
+
+}  // namespace craterkit::sph
