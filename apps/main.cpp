@@ -16,18 +16,15 @@
 int main(int argc, char** argv) {
   const craterkit::cli::Processes processes(argc, argv);  // MPI, when started by mpirun
   using craterkit::cli::Processes;
-  // Over several processes a bad input is everyone's (each read the same files): process 0 says it. Any
-  // other failure may be one process's alone, while the others wait for it: it says so with its rank and the
-  // whole job ends.
+  // Over several processes a bad input is normally everyone's (each read the same files): process 0 says it
+  // and ends the job, the others wait for that. Any other failure may be one process's alone, while the
+  // others wait for it in a collective call: it says so with its rank and ends the whole job.
   const auto failed = [](int status, const char* what, const std::exception& e) {
     const bool several = Processes::count() > 1;
-    if (status == 2 && several && Processes::rank() != 0) {
-      std::this_thread::sleep_for(std::chrono::seconds(2));  // process 0 says it and ends the job first
-      Processes::end_all_if_several(status);
-      return status;
-    }
+    if (status == 2 && several && Processes::rank() != 0)
+      std::this_thread::sleep_for(std::chrono::seconds(2));  // still here: the input was bad here alone
     std::cerr << "craterkit: " << what;
-    if (several && status != 2)
+    if (several && (status != 2 || Processes::rank() != 0))
       std::cerr << " (process " << Processes::rank() << " of " << Processes::count() << ")";
     std::cerr << ": " << e.what() << "\n";
     std::cerr.flush();

@@ -52,6 +52,7 @@ nlohmann::json summary_json(const sph::RunSummary& s) {
                         {"momentum_conserved", s.momentum_conserved},
                         {"bytes_per_particle", s.bytes_per_particle},
                         {"threads", s.threads},
+                        {"processes", s.processes},
                         {"resumed", s.resumed},
                         {"neighbour_rebuilds", s.neighbour_rebuilds},
                         {"phase_seconds", phases},
@@ -130,9 +131,11 @@ void print_crater(const impact::ImpactRunSummary& summary) {
 // impact: the crater lines, for an impact run.
 void print_summary(const sph::RunSummary& summary, const std::string& out,
                    const impact::ImpactRunSummary* impact = nullptr) {
-  fmt::print("{} ({}): {} particles, {} steps to t = {:.6g} s in {:.3f} s wall on {} threads\n", summary.name,
-             summary.setup, summary.particles, summary.steps, summary.time, summary.wall_seconds,
-             summary.threads);
+  const std::string cores = summary.processes > 1
+                                ? fmt::format("{} processes x {} threads", summary.processes, summary.threads)
+                                : fmt::format("{} threads", summary.threads);
+  fmt::print("{} ({}): {} particles, {} steps to t = {:.6g} s in {:.3f} s wall on {}\n", summary.name,
+             summary.setup, summary.particles, summary.steps, summary.time, summary.wall_seconds, cores);
   fmt::print("  {:.4g} particle updates/s, {:.1f} neighbours/particle, {:.0f} bytes/particle\n",
              summary.particle_updates_per_second, summary.mean_neighbours, summary.bytes_per_particle);
   if (summary.momentum_conserved) {

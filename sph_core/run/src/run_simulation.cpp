@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -284,6 +285,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   summary.name = config.name;
   summary.setup = record.texts.count("setup") != 0 ? record.texts.at("setup") : "";
   summary.threads = omp_get_max_threads();
+  summary.processes = options.decomposition != nullptr ? options.decomposition->size() : 1;
 
   const bool logs_ejecta = files && problem.ejection.radius > 0.0;
   summary.resumed = files && options.resume && fs::exists(out / "checkpoint.h5");
@@ -338,10 +340,13 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
     for (RunObserver* o : observers) ended = o->after_step(*sim) || ended;
     if (files && checkpoints.write_if_due(*sim) && options.after_checkpoint)
       options.after_checkpoint(sim->step_count());
-    progress.update(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
+    // Over several processes: process 0's updates times the processes (the split gives each the same work).
+    progress.update(sim->time(), sim->step_count(), sim->next_time_step(),
+                    sim->particle_updates() * std::uint64_t(summary.processes));
     share_processors(thread_share, wall_seconds(), options);
   }
-  progress.finish(sim->time(), sim->step_count(), sim->next_time_step(), sim->particle_updates());
+  progress.finish(sim->time(), sim->step_count(), sim->next_time_step(),
+                  sim->particle_updates() * std::uint64_t(summary.processes));
   summary.ended_by_observer = ended;
 
   // The final state: a snapshot and a checkpoint, so that --resume of a finished run does nothing and a
@@ -358,6 +363,11 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   summary.steps_this_run = sim->step_count() - first_step;
   summary.wall_seconds = std::chrono::duration<double>(Clock::now() - wall_start).count();
   summary.particle_updates = sim->particle_updates() - first_updates;
+  if (options.decomposition != nullptr) {
+    std::array<double, 1> updates{static_cast<double>(summary.particle_updates)};
+    options.decomposition->sum(updates);  // every process's
+    summary.particle_updates = static_cast<std::uint64_t>(updates[0]);
+  }
   summary.particle_updates_per_second =
       summary.wall_seconds > 0 ? static_cast<double>(summary.particle_updates) / summary.wall_seconds : 0.0;
   auto& timers = sim->timers();

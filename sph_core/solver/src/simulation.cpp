@@ -586,8 +586,10 @@ double Simulation::mean_neighbours() const {
   std::size_t active = 0;
   for (const auto f : problem_.particles.flags)
     active += (f & (particle_fixed | particle_ejected)) == 0 ? 1 : 0;
-  return active == 0 ? 0.0
-                     : static_cast<double>(rate_summary_.interacting_pairs) / static_cast<double>(active);
+  std::array<double, 2> counts{static_cast<double>(rate_summary_.interacting_pairs),
+                               static_cast<double>(active)};
+  if (decomposition_ != nullptr) decomposition_->sum(counts);
+  return counts[1] == 0.0 ? 0.0 : counts[0] / counts[1];
 }
 
 ConservedQuantities Simulation::conserved() const {

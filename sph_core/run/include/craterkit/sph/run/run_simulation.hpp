@@ -60,7 +60,7 @@ struct RunSummary {
   double wall_seconds = 0.0;
   double particle_updates_per_second = 0.0;  // particle updates of this run / wall_seconds (particles x
                                              // steps with a global step; Simulation::particle_updates())
-  std::uint64_t particle_updates = 0;        // of this run
+  std::uint64_t particle_updates = 0;        // of this run (over all processes)
   double mean_neighbours = 0.0;
   double relative_energy_error = 0.0;
   double relative_momentum_error = 0.0;
@@ -69,7 +69,8 @@ struct RunSummary {
   // (for an impact into a target held by its shell, about the projectile's), not an error of the scheme.
   bool momentum_conserved = true;
   double bytes_per_particle = 0.0;
-  int threads = 1;
+  int threads = 1;    // OpenMP threads per process
+  int processes = 1;  // MPI processes (RunOptions::decomposition)
   bool resumed = false;
   bool ended_by_observer = false;  // an observer ended the run (else end_time or max_steps)
   std::uint64_t neighbour_rebuilds = 0;

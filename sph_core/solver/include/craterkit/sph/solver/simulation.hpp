@@ -116,7 +116,7 @@ class Simulation {
   [[nodiscard]] const SolverParameters& parameters() const { return parameters_; }
   [[nodiscard]] PhaseTimers& timers() { return timers_; }
   // Interacting pairs (r < h_i + h_j) per particle in the last rate evaluation.
-  // (Distributed: of this process's particles.)
+  // (Distributed: over all processes; collective.)
   [[nodiscard]] double mean_neighbours() const;
   [[nodiscard]] const ConservedQuantities& initial_conserved() const { return initial_; }
   // Of all particles (distributed: summed over the processes; collective).
