@@ -3,7 +3,7 @@
 #include <cstdlib>
 
 #ifdef CRATERKIT_WITH_MPI
-#include <optional>
+#include <array>
 
 #include "craterkit/sph/domain/communicator.hpp"
 #include "craterkit/sph/domain/mpi_decomposition.hpp"

@@ -87,9 +87,4 @@ double MpiDecomposition::halo_fraction() const {
   return counts[1] > 0.0 ? counts[0] / counts[1] : 0.0;
 }
 
-std::size_t MpiDecomposition::halo_destinations() const {
-  return static_cast<std::size_t>(
-      std::count_if(plan_.send.begin(), plan_.send.end(), [](const auto& to) { return !to.empty(); }));
-}
-
 }  // namespace craterkit::sph

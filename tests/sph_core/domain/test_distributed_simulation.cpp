@@ -30,6 +30,7 @@
 #include "craterkit/sph/run/standard_problem_config.hpp"
 #include "craterkit/sph/solver/simulation.hpp"
 #include "sph_core/solid_test_setups.hpp"
+#include "study/study_test_helpers.hpp"
 
 namespace craterkit::sph {
 namespace {
@@ -200,34 +201,13 @@ TEST(DistributedSimulation, PorousCohesivePlateImpactFollowsTheSerialRun) {
   expect_serial(porous_plates_config(), 20);
 }
 
-// The tiny impact of tests/study/tiny_study.sh (a quarter domain: mirror planes, graded porous target held by
-// its fixed shell, resolved projectile, gravity) with the global time step, its first 20 steps, before any
-// ejection or late-stage switch (neither of which runs distributed yet). Like the plate impact, the first
-// steps of an impact are ill-conditioned: compared within the serial run's own sensitivity.
+// The tiny impact of the study tests (study_test_helpers.hpp; a quarter domain: mirror planes, graded porous
+// target held by its fixed shell, resolved projectile, gravity) with the global time step, its first 20
+// steps, before any ejection or late-stage switch (neither of which runs distributed yet). Like the plate
+// impact, the first steps of an impact are ill-conditioned: compared within the serial run's own sensitivity.
 TEST(DistributedSimulation, TinyImpactFollowsTheSerialRun) {
-  impact::ImpactConfig config = impact::parse_impact_config(R"(
-[problem]
-name = "tiny-impact"
-setup = "impact"
-[impact]
-projectile_model = "resolved"
-projectile_density = 1300.0
-projectile_mass = 5450.0
-impact_speed = 50.0
-A_low = 0.27e6
-domain_radius = 5.0
-particle_spacing = 0.5
-t_transition = 0.01
-symmetry = "quarter"
-[run]
-end_time = 1.0
-gravity = [0.0, 0.0, -1.0]
-[kernel]
-max_smoothing_length = 1.8
-[time_step]
-block_levels = 0
-)",
-                                                            "tiny impact");
+  impact::ImpactConfig config = impact::parse_impact_config(
+      std::string(study::test::tiny_base()) + "[time_step]\nblock_levels = 0\n", "tiny impact");
   impact::ImpactRun run = impact::build_impact_run(config);
   run.problem.late_stage = {};
   run.problem.ejection = {};

@@ -30,10 +30,9 @@ class MpiDecomposition final : public Decomposition {
   [[nodiscard]] int rank() const override { return comm_.rank(); }
   [[nodiscard]] int size() const override { return comm_.size(); }
 
-  // Halo particles per owned particle in the last add_halos(), over all ranks (collective), and the ranks
-  // this one sent halos to: what the communication costs (bench/RESULTS.md).
+  // Halo particles per owned particle in the last add_halos(), over all ranks (collective): what the
+  // communication costs (bench/RESULTS.md).
   [[nodiscard]] double halo_fraction() const;
-  [[nodiscard]] std::size_t halo_destinations() const;
 
  private:
   Communicator comm_;
