@@ -56,11 +56,7 @@ int run(int argc, char** argv) {
   const CurveCube cube = global_bounding_cube(particles.x, particles.y, particles.z, comm);
   std::vector<std::uint64_t> keys(particles.size());
   morton_keys(particles.x, particles.y, particles.z, cube, keys);
-  std::vector<std::uint32_t> order(particles.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = std::uint32_t(i);
-  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return keys[a] < keys[b]; });
-  particles.permute(order);
-  std::sort(keys.begin(), keys.end());
+  (void)sort_along_curve(particles, keys);
   const auto work_of = [](const Particles& p) {
     std::vector<double> work(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) work[i] = p.time_step[i] > 0 ? 1.0 / p.time_step[i] : 1.0;

@@ -1,9 +1,7 @@
 #include "craterkit/sph/domain/mpi_decomposition.hpp"
 
-#include <algorithm>
-#include <numeric>
+#include <array>
 #include <stdexcept>
-#include <tuple>
 
 #include "craterkit/sph/domain/curve_split.hpp"
 #include "craterkit/sph/particles/space_filling_curve.hpp"
@@ -31,21 +29,12 @@ void MpiDecomposition::distribute(Particles& particles, std::span<const double> 
   if (work.size() != particles.size())
     throw std::invalid_argument("MpiDecomposition::distribute: one work value per particle needed");
   const CurveCube cube = global_bounding_cube(particles.x, particles.y, particles.z, comm_);
-  std::vector<std::uint64_t> keys(particles.size());
-  morton_keys(particles.x, particles.y, particles.z, cube, keys);
-  // Sorted by (key, id) here, so that split_by_work sees ascending keys and migrate() keeps the order.
-  std::vector<std::uint32_t> order(particles.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return std::tie(keys[a], particles.id[a]) < std::tie(keys[b], particles.id[b]);
-  });
-  particles.permute(order);
-  keys_.resize(order.size());
+  keys_.resize(particles.size());
+  morton_keys(particles.x, particles.y, particles.z, cube, keys_);
+  // Sorted here, so that split_by_work sees ascending keys.
+  const std::vector<std::uint32_t> order = sort_along_curve(particles, keys_);
   std::vector<double> sorted_work(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    keys_[k] = keys[order[k]];
-    sorted_work[k] = work[order[k]];
-  }
+  for (std::size_t k = 0; k < order.size(); ++k) sorted_work[k] = work[order[k]];
   migrate(particles, keys_, split_by_work(keys_, sorted_work, comm_), comm_);
   held_ = particles.size();
   owned_ = {0, held_};

@@ -29,10 +29,9 @@ std::size_t particle_bytes(Particles& particles) {
 // Every rank must carry the same fields, or the bytes of one rank's particles would be read as another's.
 std::size_t common_particle_bytes(Particles& particles, const Communicator& comm) {
   const std::size_t bytes = particle_bytes(particles);
-  std::vector<double> low{double(bytes)}, high{double(bytes)};
-  comm.min(low);
-  comm.max(high);
-  if (low[0] != high[0])
+  std::array<double, 2> extremes{double(bytes), -double(bytes)};  // smallest and (negated) largest
+  comm.min(extremes);
+  if (extremes[0] != -extremes[1])
     throw std::invalid_argument(
         "particle exchange: the ranks' particles hold different fields (solid_fields)");
   return bytes;
@@ -232,6 +231,20 @@ std::span<const T> view_as(std::span<const std::byte> bytes) {
 
 }  // namespace
 
+std::vector<std::uint32_t> sort_along_curve(Particles& particles, std::vector<std::uint64_t>& keys) {
+  if (keys.size() != particles.size())
+    throw std::invalid_argument("sort_along_curve: one key per particle expected");
+  std::vector<std::uint32_t> order = all_indices(particles.size());
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return std::tie(keys[a], particles.id[a]) < std::tie(keys[b], particles.id[b]);
+  });
+  particles.permute(order);
+  std::vector<std::uint64_t> sorted(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = keys[order[k]];
+  keys = std::move(sorted);
+  return order;
+}
+
 void migrate(Particles& particles, std::vector<std::uint64_t>& keys, const KeyRanges& ranges,
              const Communicator& comm) {
   if (keys.size() != particles.size()) throw std::invalid_argument("migrate: one key per particle expected");
@@ -259,16 +272,9 @@ void migrate(Particles& particles, std::vector<std::uint64_t>& keys, const KeyRa
                   arrived_keys);
     at += bytes;
   }
-  // Sorted along the curve, ties by id: the order of a serial run over the same particles.
-  std::vector<std::uint32_t> order = all_indices(arrived.size());
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return std::tie(arrived_keys[a], arrived.id[a]) < std::tie(arrived_keys[b], arrived.id[b]);
-  });
-  arrived.permute(order);
-  std::vector<std::uint64_t> sorted_keys(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) sorted_keys[k] = arrived_keys[order[k]];
+  (void)sort_along_curve(arrived, arrived_keys);
   particles = std::move(arrived);
-  keys = std::move(sorted_keys);
+  keys = std::move(arrived_keys);
 }
 
 HaloPlan find_halos(std::span<const double> x, std::span<const double> y, std::span<const double> z,

@@ -89,18 +89,6 @@ std::vector<std::uint64_t> keys_of(const Particles& p, const CurveCube& cube) {
   return keys;
 }
 
-// Sorts by (key, id), the order migrate() leaves.
-void sort_along_curve(Particles& p, std::vector<std::uint64_t>& keys) {
-  std::vector<std::uint32_t> order(p.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(),
-            [&](auto a, auto b) { return std::tie(keys[a], p.id[a]) < std::tie(keys[b], p.id[b]); });
-  p.permute(order);
-  std::vector<std::uint64_t> sorted(keys.size());
-  for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = keys[order[k]];
-  keys = std::move(sorted);
-}
-
 // Neighbour lists with each list sorted by entry: the pair sums then run in index order.
 NeighbourLists sorted_lists(const Particles& p, double skin, const Box& box) {
   NeighbourSearch search({.skin = skin});

@@ -22,6 +22,11 @@
 
 namespace craterkit::sph {
 
+// Sorts the particles and their keys (keys[i] of particle i) along the curve, ties by id: the order migrate()
+// leaves and a serial run's curve sort gives. Returns the permutation applied (new index k holds the particle
+// that was at order[k]), for values kept beside the particles.
+std::vector<std::uint32_t> sort_along_curve(Particles& particles, std::vector<std::uint64_t>& keys);
+
 // Sends every particle to the rank that owns its key (keys[i] of particle i, on the curve of the global
 // cube). Afterwards this rank holds exactly the particles of its range, sorted by (key, id), and `keys`
 // theirs. Every rank's Particles must hold the same field set (solid_fields). Collective.
