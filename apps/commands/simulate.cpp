@@ -233,22 +233,25 @@ void run_simulate_checked(const SimulateOptions& options) {
   run.output_directory = options.out;
   run.resume = options.resume;
   run.progress = !options.quiet;
+  // Under mpirun: one simulation over the processes; process 0 writes and prints.
+  const bool writer = Processes::rank() == 0;
+  run.log = writer;
   if (setup == "impact") {
     const impact::ImpactConfig config = impact::parse_impact_config(root);
-    if (Processes::count() > 1 && !options.dry_run) {
-      throw InputError(options.config +
-                       ": an impact cannot run over several processes yet (its late-stage switch, ejecta and "
-                       "crater measurement are serial); run it without mpirun (docs/parallel.md)");
-    }
     run.configuration = root.values_read();
-    if (!options.dry_run && !options.out.empty()) prepare_output_folder(options);
+    if (!options.dry_run && !options.out.empty() && writer) prepare_output_folder(options);
+    const std::unique_ptr<sph::Decomposition> decomposition = Processes::decomposition();
+    run.decomposition = decomposition.get();
+    Processes::wait_for_all();
     if (options.dry_run) {
+      if (!writer) return;
       const impact::ImpactRun set_up = impact::build_impact_run(config);
       print_dry_run(config.simulation.name, setup, set_up.problem, config.simulation.run.end_time,
                     &set_up.summary, options.json);
       return;
     }
     const auto summary = impact::run_impact(config, run);
+    if (!writer) return;
     if (options.json) {
       craterkit::cli::print_json(summary_json(summary));
       return;
@@ -258,20 +261,19 @@ void run_simulate_checked(const SimulateOptions& options) {
   }
   const sph::StandardProblemConfig config = sph::parse_standard_problem_config(root);
   run.configuration = root.values_read();
-  if (!options.dry_run && !options.out.empty() && Processes::rank() == 0) prepare_output_folder(options);
-  // Under mpirun: one simulation over the processes; process 0 writes and prints.
+  if (!options.dry_run && !options.out.empty() && writer) prepare_output_folder(options);
   const std::unique_ptr<sph::Decomposition> decomposition = Processes::decomposition();
   run.decomposition = decomposition.get();
   Processes::wait_for_all();
   if (options.dry_run) {
-    if (Processes::rank() == 0) {
+    if (writer) {
       print_dry_run(config.simulation.name, setup, sph::build_standard_problem(config),
                     config.simulation.run.end_time, nullptr, options.json);
     }
     return;
   }
   const auto summary = sph::run_standard_problem(config, run);
-  if (Processes::rank() != 0) return;
+  if (!writer) return;
   if (options.json) {
     craterkit::cli::print_json(summary_json(summary));
     return;

@@ -55,6 +55,12 @@ void MpiDecomposition::refresh_halos(Particles& particles, std::span<const std::
   sph::refresh_halos(particles, plan_, owned_, fields, comm_);
 }
 
+void MpiDecomposition::refresh_halo_values(std::span<double> values) {
+  if (values.size() != held_)
+    throw std::logic_error("MpiDecomposition::refresh_halo_values: one value per held particle needed");
+  sph::refresh_halo_values(values, plan_, owned_, comm_);
+}
+
 void MpiDecomposition::remove_halos(Particles& particles) {
   if (particles.size() != held_) throw std::logic_error("MpiDecomposition::remove_halos: no halos held");
   sph::remove_halos(particles, keys_, owned_);
@@ -66,6 +72,15 @@ Particles MpiDecomposition::gather(Particles& particles) const {
   if (particles.size() != held_ || owned_.size() != held_)
     throw std::logic_error("MpiDecomposition::gather: halos held, or distribute() not called");
   return gather_particles(particles, keys_, comm_);
+}
+
+Particles MpiDecomposition::collect_flagged(Particles& particles, std::uint8_t flag) {
+  if (particles.size() != held_ || owned_.size() != held_)
+    throw std::logic_error("MpiDecomposition::collect_flagged: halos held, or distribute() not called");
+  Particles collected = sph::collect_flagged(particles, keys_, flag, comm_);
+  held_ = particles.size();
+  owned_ = {0, held_};
+  return collected;
 }
 
 double MpiDecomposition::halo_fraction() const {

@@ -374,13 +374,14 @@ HaloPlan find_halos(std::span<const double> x, std::span<const double> y, std::s
   return plan;
 }
 
-Particles gather_particles(Particles& particles, const std::vector<std::uint64_t>& keys,
-                           const Communicator& comm) {
-  if (keys.size() != particles.size())
-    throw std::invalid_argument("gather_particles: one key per particle expected");
+namespace {
+
+// The particles `indices` of every rank, to rank 0 in rank order (each rank's in the order given).
+Particles gather_selected(Particles& particles, const std::vector<std::uint64_t>& keys,
+                          std::span<const std::uint32_t> indices, const Communicator& comm) {
   const std::size_t per_particle = common_particle_bytes(particles, comm);  // key included
   std::vector<std::byte> bytes;
-  pack(particles, keys, all_indices(particles.size()), bytes);
+  pack(particles, keys, indices, bytes);
   const RankBytes all = comm.gather(bytes);
   Particles whole = empty_like(particles);
   std::vector<std::uint64_t> whole_keys;
@@ -390,6 +391,35 @@ Particles gather_particles(Particles& particles, const std::vector<std::uint64_t
     at += count;
   }
   return whole;
+}
+
+}  // namespace
+
+Particles gather_particles(Particles& particles, const std::vector<std::uint64_t>& keys,
+                           const Communicator& comm) {
+  if (keys.size() != particles.size())
+    throw std::invalid_argument("gather_particles: one key per particle expected");
+  return gather_selected(particles, keys, all_indices(particles.size()), comm);
+}
+
+Particles collect_flagged(Particles& particles, std::vector<std::uint64_t>& keys, std::uint8_t flag,
+                          const Communicator& comm) {
+  if (keys.size() != particles.size())
+    throw std::invalid_argument("collect_flagged: one key per particle expected");
+  std::vector<std::uint32_t> staying, leaving;
+  for (std::size_t i = 0; i < particles.size(); ++i)
+    ((particles.flags[i] & flag) != 0 ? leaving : staying).push_back(static_cast<std::uint32_t>(i));
+  Particles collected = gather_selected(particles, keys, leaving, comm);
+  if (!leaving.empty()) {
+    const std::size_t kept = staying.size();
+    staying.insert(staying.end(), leaving.begin(), leaving.end());
+    particles.permute(staying);
+    particles.resize(kept);
+    std::vector<std::uint64_t> kept_keys(kept);
+    for (std::size_t k = 0; k < kept; ++k) kept_keys[k] = keys[staying[k]];
+    keys = std::move(kept_keys);
+  }
+  return collected;
 }
 
 OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, const HaloPlan& plan,
@@ -493,6 +523,42 @@ void refresh_halos(Particles& particles, const HaloPlan& plan, const OwnedRange&
     at += received.counts[q];
   }
   if (bytes_per_halo && slot != particles.size()) throw mismatch();
+}
+
+void refresh_halo_values(std::span<double> values, const HaloPlan& plan, const OwnedRange& owned,
+                         const Communicator& comm) {
+  if (plan.send.size() != std::size_t(comm.size()))
+    throw std::invalid_argument("refresh_halo_values: the halo plan is for another rank count");
+  if (owned.begin > owned.end || owned.end > values.size())
+    throw std::invalid_argument("refresh_halo_values: owned range outside the values");
+  RankBytes send;
+  send.counts.resize(plan.send.size());
+  for (std::size_t q = 0; q < plan.send.size(); ++q) {
+    const std::size_t before = send.bytes.size();
+    send.bytes.resize(before + plan.send[q].size() * sizeof(double));
+    std::byte* destination = send.bytes.data() + before;
+    for (const std::uint32_t i : plan.send[q]) {
+      std::memcpy(destination, &values[owned.begin + i], sizeof(double));
+      destination += sizeof(double);
+    }
+    send.counts[q] = send.bytes.size() - before;
+  }
+  const RankBytes received = comm.all_to_all(send);
+  // Lower ranks' halos before the owned range, higher ranks' after it, in rank order (insert_halos).
+  std::size_t slot = 0, at = 0;
+  for (std::size_t q = 0; q < received.counts.size(); ++q) {
+    if (q == std::size_t(comm.rank())) {
+      if (slot != owned.begin) throw std::logic_error("refresh_halo_values: not the halos of this plan");
+      slot = owned.end;
+    }
+    const std::size_t count = received.counts[q] / sizeof(double);
+    if (slot + count > values.size())
+      throw std::logic_error("refresh_halo_values: not the halos of this plan");
+    if (count) std::memcpy(values.data() + slot, received.bytes.data() + at, count * sizeof(double));
+    slot += count;
+    at += received.counts[q];
+  }
+  if (slot != values.size()) throw std::logic_error("refresh_halo_values: not the halos of this plan");
 }
 
 void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned) {

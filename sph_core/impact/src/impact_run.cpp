@@ -1,6 +1,7 @@
 #include "craterkit/impact/impact_run.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -13,6 +14,8 @@ namespace craterkit::impact {
 using namespace sph;
 
 namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
 
 // Samples the crater radius every check interval of simulated time and ends the run when growth has ended
 // (crater_growth.hpp). The samples go to crater_growth.csv, from which a resumed run takes its history.
@@ -32,8 +35,10 @@ class CraterGrowthMonitor final : public RunObserver {
     axes_.n_azimuths = 4;
   }
 
+  // Over several processes process 0 measures (on the gathered particles), logs and decides; the others
+  // take part in the gathers at the same times and in its decision.
   bool start(Simulation& simulation, const RunAttributes* checkpoint) override {
-    if (!csv_.empty()) {
+    if (!csv_.empty() && simulation.writes_output()) {
       const std::int64_t restart_step =
           checkpoint != nullptr ? static_cast<std::int64_t>(simulation.step_count()) : -1;
       std::optional<std::uint64_t> expected;
@@ -46,8 +51,10 @@ class CraterGrowthMonitor final : public RunObserver {
       }
       if (!samples_.empty()) next_check_ = samples_.back().time + interval_;
     }
+    // Process 0's history sets the next sample time of every process.
+    next_check_ = simulation.least_over_processes(simulation.writes_output() ? next_check_ : infinity);
     if (checkpoint == nullptr) return sample_if_due(simulation);
-    return parameters_.stop_when_grown && crater_growth_ended(samples_, criteria_);
+    return simulation.any_process(parameters_.stop_when_grown && crater_growth_ended(samples_, criteria_));
   }
 
   bool after_step(Simulation& simulation) override { return sample_if_due(simulation); }
@@ -64,9 +71,13 @@ class CraterGrowthMonitor final : public RunObserver {
   bool sample_if_due(Simulation& simulation) {
     if (simulation.time() < next_check_) return false;
     auto scope = simulation.timers().measure("crater");
-    const CraterMeasurement m = measure_crater(simulation.particles(), axes_);
+    next_check_ = simulation.time() + interval_;
+    Particles gathered;
+    const Particles& whole = simulation.whole_particles(gathered);
+    if (!simulation.writes_output()) return simulation.any_process(false);
+    const CraterMeasurement m = measure_crater(whole, axes_);
     const CraterGrowthSample sample{simulation.time(), simulation.step_count(), m.crater_radius,
-                                    moving_kinetic_energy(simulation.particles())};
+                                    moving_kinetic_energy(whole)};
     samples_.push_back(sample);
     if (log_) {
       char row[256];
@@ -74,8 +85,7 @@ class CraterGrowthMonitor final : public RunObserver {
                     static_cast<unsigned long long>(sample.step), sample.radius, sample.kinetic_energy);
       log_->append(row);
     }
-    next_check_ = sample.time + interval_;
-    return parameters_.stop_when_grown && crater_growth_ended(samples_, criteria_);
+    return simulation.any_process(parameters_.stop_when_grown && crater_growth_ended(samples_, criteria_));
   }
 
   CraterGrowthParameters parameters_;
@@ -96,7 +106,10 @@ class CraterReport final : public RunObserver {
 
   void finish(Simulation& simulation) override {
     auto scope = simulation.timers().measure("crater");
-    crater = measure_crater(simulation.particles(), measurement_);
+    Particles gathered;
+    const Particles& whole = simulation.whole_particles(gathered);
+    if (!simulation.writes_output()) return;  // process 0 measures and writes
+    crater = measure_crater(whole, measurement_);
     if (!directory_.empty()) {
       write_crater_files(directory_, *crater, simulation.time());
       crater_json = (directory_ / "crater.json").string();

@@ -36,26 +36,27 @@ namespace {
 
 }  // namespace
 
-int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists,
-                                   const PairSupport* support) const {
+int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists, const PairSupport* support,
+                                   const NeighbourLevels& levels) {
+  const std::size_t listed = i + levels.offset;
   int highest = 0;
-  for (const std::uint32_t entry : lists.of(i)) {
+  for (const std::uint32_t entry : lists.of(listed)) {
     const std::size_t j = neighbour_index(entry);  // a mirror image has its source's level
-    if (scheduled_[j] == 0 || int(level_[j]) <= highest) continue;
-    if (support == nullptr || (*support)(i, entry)) highest = int(level_[j]);
+    if (levels.scheduled[j] == 0 || int(levels.level[j]) <= highest) continue;
+    if (support == nullptr || (*support)(listed, entry)) highest = int(levels.level[j]);
   }
   return highest - block_neighbour_levels;
 }
 
-void BlockSchedule::start(double block, std::span<const double> time_step,
-                          std::span<const std::uint8_t> flags, std::size_t count,
-                          const NeighbourLists& lists, const PairSupport* support) {
+void BlockSchedule::assign_levels(double block, std::span<const double> time_step,
+                                  std::span<const std::uint8_t> flags, std::size_t count) {
   block_ = block;
   level_.assign(count, 0);
   end_tick_.assign(count, 0);
   start_tick_.assign(count, 0);
   scheduled_.assign(count, 0);
   active_steps_.assign(count, 0.0);
+  wake_floor_.assign(count, 0);
   active_.clear();
   const auto n = static_cast<std::int64_t>(count);
   int bad = -1;
@@ -69,30 +70,41 @@ void BlockSchedule::start(double block, std::span<const double> time_step,
     level_[i] = static_cast<std::uint8_t>(std::min(level, block_finest_level_limit));
   }
   if (bad >= 0) throw_collapse(block, time_step[std::size_t(bad)], std::size_t(bad));
-  // Neighbour rule: sweeps (each reading the levels of the sweep before, so the result does not
-  // depend on the thread count) until no particle is more than two levels coarser than a neighbour.
-  std::vector<std::uint8_t> raised(count);
-  for (bool changed = true; changed;) {
-    changed = false;
+}
+
+bool BlockSchedule::raise_levels(const NeighbourLists& lists, const PairSupport* support,
+                                 const NeighbourLevels& levels) {
+  // Each sweep reads the levels of the sweep before, so the result does not depend on the thread count.
+  const auto n = static_cast<std::int64_t>(level_.size());
+  std::vector<std::uint8_t> raised(level_.size());
+  bool changed = false;
 #pragma omp parallel for schedule(dynamic, 256) reduction(|| : changed)
-    for (std::int64_t ii = 0; ii < n; ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      raised[i] = level_[i];
-      if (scheduled_[i] == 0) continue;
-      const int floor = neighbour_floor(i, lists, support);
-      if (floor > int(level_[i])) {
-        raised[i] = static_cast<std::uint8_t>(floor);
-        changed = true;
-      }
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    raised[i] = level_[i];
+    if (scheduled_[i] == 0) continue;
+    const int floor = neighbour_floor(i, lists, support, levels);
+    if (floor > int(level_[i])) {
+      raised[i] = static_cast<std::uint8_t>(floor);
+      changed = true;
     }
-    level_.swap(raised);
   }
-  finest_ = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    if (scheduled_[i] != 0) finest_ = std::max(finest_, int(level_[i]));
+  level_.swap(raised);
+  return changed;
+}
+
+int BlockSchedule::finest_scheduled_level() const {
+  int finest = 0;
+  for (std::size_t i = 0; i < level_.size(); ++i) {
+    if (scheduled_[i] != 0) finest = std::max(finest, int(level_[i]));
   }
+  return finest;
+}
+
+void BlockSchedule::begin_ticks(int finest) {
+  finest_ = finest;
   level_counts_.assign(std::size_t(finest_) + 1, 0);
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::size_t i = 0; i < level_.size(); ++i) {
     if (scheduled_[i] == 0) continue;
     ++level_counts_[level_[i]];
     start_tick_[i] = 0;
@@ -101,7 +113,17 @@ void BlockSchedule::start(double block, std::span<const double> time_step,
   tick_ = 0;
 }
 
-double BlockSchedule::advance() {
+void BlockSchedule::start(double block, std::span<const double> time_step,
+                          std::span<const std::uint8_t> flags, std::size_t count, const NeighbourLists& lists,
+                          const PairSupport* support) {
+  assign_levels(block, time_step, flags, count);
+  // Neighbour rule: until no particle is more than two levels coarser than a neighbour.
+  while (raise_levels(lists, support, own_levels())) {
+  }
+  begin_ticks(finest_scheduled_level());
+}
+
+std::uint64_t BlockSchedule::next_end() const {
   const auto n = static_cast<std::int64_t>(level_.size());
   std::uint64_t next = ticks_per_block();
 #pragma omp parallel for schedule(static) reduction(min : next)
@@ -109,6 +131,10 @@ double BlockSchedule::advance() {
     const auto i = static_cast<std::size_t>(ii);
     if (scheduled_[i] != 0) next = std::min(next, end_tick_[i]);
   }
+  return next;
+}
+
+double BlockSchedule::advance_to(std::uint64_t next) {
   active_.clear();
   for (std::size_t i = 0; i < level_.size(); ++i) {
     if (scheduled_[i] != 0 && end_tick_[i] == next) {
@@ -120,6 +146,10 @@ double BlockSchedule::advance() {
   const double dt = std::ldexp(block_ * static_cast<double>(next - tick_), -finest_);
   tick_ = next;
   return dt;
+}
+
+double BlockSchedule::advance() {
+  return advance_to(next_end());
 }
 
 double BlockSchedule::step_of(std::size_t i) const {
@@ -137,17 +167,17 @@ void BlockSchedule::refine_to(int level) {
   finest_ = level;
 }
 
-void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLists& lists,
-                            const PairSupport* support) {
+int BlockSchedule::choose_levels(std::span<const double> time_step, const NeighbourLists& lists,
+                                 const PairSupport* support, const NeighbourLevels& levels) {
   const auto n = static_cast<std::int64_t>(active_.size());
-  std::vector<std::uint8_t> wanted(active_.size());  // per substep; small next to the pair pass
+  wanted_.resize(active_.size());
   int highest = 0, bad = -1;
 #pragma omp parallel for schedule(static) reduction(max : highest, bad)
   for (std::int64_t kk = 0; kk < n; ++kk) {
     const auto k = static_cast<std::size_t>(kk);
     const std::size_t i = active_[k];
     const int current = level_[i];
-    int want = std::max(block_level(block_, time_step[i]), neighbour_floor(i, lists, support));
+    int want = std::max(block_level(block_, time_step[i]), neighbour_floor(i, lists, support, levels));
     if (want > block_finest_level_limit) bad = std::max(bad, int(i));
     want = std::min(want, block_finest_level_limit);
     int level = current;
@@ -158,34 +188,58 @@ void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLi
       const std::uint64_t coarser_ticks = std::uint64_t{1} << (finest_ - coarser);
       if (tick_ % coarser_ticks == 0 && tick_ < ticks_per_block()) level = coarser;
     }
-    wanted[k] = static_cast<std::uint8_t>(level);
+    wanted_[k] = static_cast<std::uint8_t>(level);
     highest = std::max(highest, level);
   }
   if (bad >= 0) throw_collapse(block_, time_step[std::size_t(bad)], std::size_t(bad));
-  refine_to(highest);
+  return highest;
+}
+
+void BlockSchedule::apply_levels(int finest) {
+  refine_to(finest);
   for (std::size_t k = 0; k < active_.size(); ++k) {
     const std::size_t i = active_[k];
-    level_[i] = wanted[k];
+    level_[i] = wanted_[k];
     start_tick_[i] = tick_;
     end_tick_[i] = tick_ + (std::uint64_t{1} << (finest_ - level_[i]));
   }
+}
+
+void BlockSchedule::wake(std::span<const std::uint32_t> wakers, std::span<const std::uint8_t> waker_level,
+                         const NeighbourLists& lists, const PairSupport* support, std::size_t offset) {
   // Waking (Saitoh & Makino 2009): a neighbour in the middle of a step more than two levels coarser than
-  // an active particle's new level has its step cut short at the next tick aligned to the level two
-  // coarser than that, and continues at that level. Serial: few particles are woken, and several active
-  // particles may wake the same neighbour.
-  for (const std::uint32_t i : active_) {
-    const int floor = int(level_[i]) - block_neighbour_levels;
+  // a waker's new level has its step cut short at the next tick aligned to the level two coarser than
+  // that, and continues at that level. Of several wakers the finest decides. Serial: few particles are
+  // woken.
+  woken_.clear();
+  for (const std::uint32_t k : wakers) {
+    const int floor = int(waker_level[k]) - block_neighbour_levels;
     if (floor <= 0) continue;
-    for (const std::uint32_t entry : lists.of(i)) {
-      const std::size_t j = neighbour_index(entry);
+    for (const std::uint32_t entry : lists.of(k)) {
+      const std::size_t listed = neighbour_index(entry);
+      if (listed < offset || listed - offset >= level_.size()) continue;  // another process's particle
+      const std::size_t j = listed - offset;
       if (scheduled_[j] == 0 || int(level_[j]) >= floor || end_tick_[j] <= tick_) continue;
-      if (support != nullptr && !(*support)(i, entry)) continue;
-      const std::uint64_t step = std::uint64_t{1} << (finest_ - floor);
-      const std::uint64_t end = (tick_ / step + 1) * step;
-      if (end < end_tick_[j]) end_tick_[j] = end;
-      level_[j] = static_cast<std::uint8_t>(floor);
+      if (support != nullptr && !(*support)(k, entry)) continue;
+      if (wake_floor_[j] == 0) woken_.push_back(static_cast<std::uint32_t>(j));
+      wake_floor_[j] = static_cast<std::uint8_t>(std::max(int(wake_floor_[j]), floor));
     }
   }
+  for (const std::uint32_t j : woken_) {
+    const int floor = wake_floor_[j];
+    wake_floor_[j] = 0;
+    const std::uint64_t step = std::uint64_t{1} << (finest_ - floor);
+    const std::uint64_t end = (tick_ / step + 1) * step;
+    if (end < end_tick_[j]) end_tick_[j] = end;
+    level_[j] = static_cast<std::uint8_t>(floor);
+  }
+}
+
+void BlockSchedule::relevel(std::span<const double> time_step, const NeighbourLists& lists,
+                            const PairSupport* support) {
+  const int highest = choose_levels(time_step, lists, support, own_levels());
+  apply_levels(std::max(highest, finest_));
+  wake(active_, level_, lists, support, 0);
 }
 
 }  // namespace craterkit::sph

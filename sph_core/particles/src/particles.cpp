@@ -1,6 +1,8 @@
 #include "craterkit/sph/particles/particles.hpp"
 
 #include <cassert>
+#include <stdexcept>
+#include <type_traits>
 
 namespace craterkit::sph {
 
@@ -47,6 +49,20 @@ void Particles::reserve(std::size_t n) {
 
 void Particles::shrink_to_fit() {
   for_each_field([](std::string_view, auto& field) { field.shrink_to_fit(); });
+}
+
+void Particles::append(const Particles& other) {
+  if (other.solid_fields != solid_fields)
+    throw std::invalid_argument("Particles::append: the two sets hold different fields (solid_fields)");
+  // Field by field, matched by name (a few dozen names: no cost next to the copies).
+  for_each_field([&other](std::string_view name, auto& field) {
+    using Field = std::decay_t<decltype(field)>;
+    other.for_each_field([&](std::string_view other_name, const auto& source) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(source)>, Field>) {
+        if (other_name == name) field.insert(field.end(), source.begin(), source.end());
+      }
+    });
+  });
 }
 
 void Particles::permute(std::span<const std::uint32_t> order) {

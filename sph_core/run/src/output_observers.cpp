@@ -47,7 +47,9 @@ std::optional<std::uint64_t> expected_rows(const RunAttributes* checkpoint, cons
   return static_cast<std::uint64_t>(found->second);
 }
 
+// Over several processes process 0 receives every ejection (Simulation::take_new_ejecta) and writes.
 bool EjectaLog::start(Simulation& simulation, const RunAttributes* checkpoint) {
+  if (!simulation.writes_output()) return false;
   const std::int64_t restart_step =
       checkpoint != nullptr ? static_cast<std::int64_t>(simulation.step_count()) : -1;
   log_ = std::make_unique<StepCsvLog>(path_, ejecta_csv_header(), ejecta_csv_step_column, restart_step,
@@ -61,7 +63,9 @@ void EjectaLog::save(RunAttributes& checkpoint) const {
 
 bool EjectaLog::after_step(Simulation& simulation) {
   auto scope = simulation.timers().measure("output");
-  for (const auto& record : simulation.take_new_ejecta()) log_->append(ejecta_csv_row(record));
+  for (const auto& record : simulation.take_new_ejecta()) {
+    if (log_) log_->append(ejecta_csv_row(record));
+  }
   return false;
 }
 

@@ -241,11 +241,9 @@ void summarise(const Simulation& sim, RunSummary& summary) {
       gravity[0] == 0.0 && gravity[1] == 0.0 && gravity[2] == 0.0 && !has_fixed && !sim.box().any_mirror();
   summary.bytes_per_particle = sim.bytes_per_particle();
   summary.neighbour_rebuilds = sim.neighbour_rebuilds();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if ((p.flags[i] & particle_ejected) == 0) continue;
-    ++summary.ejected_particles;
-    summary.ejected_mass += p.mass[i];
-  }
+  const EjectedTotals ejected = sim.ejected_totals();
+  summary.ejected_particles = ejected.particles;
+  summary.ejected_mass = ejected.mass;
   if (sim.problem().late_stage.planned()) {
     summary.transition_time = sim.problem().late_stage.transition_time;
     summary.late_stage = sim.late_stage_active();
@@ -301,7 +299,7 @@ RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,
   ConservationRecorder conservation(out / "conservation.csv");
   SnapshotWriter snapshots(out, config.output.snapshot_times, record, config.output.compression);
   std::vector<RunObserver*> observers;
-  if (options.log) observers.push_back(&late_stage_report);
+  if (options.log && writer) observers.push_back(&late_stage_report);
   if (logs_ejecta) observers.push_back(&ejecta_log);
   if (files && config.output.conservation_log) observers.push_back(&conservation);
   if (files) observers.push_back(&snapshots);

@@ -4,6 +4,10 @@
 
 namespace craterkit::sph {
 
+EjectaRecord ejecta_record(const Particles& p, std::size_t i, double time, std::uint64_t step) {
+  return {p.id[i], p.material[i], p.mass[i], time, step, p.x[i], p.y[i], p.z[i], p.vx[i], p.vy[i], p.vz[i]};
+}
+
 std::size_t eject_particles(Particles& p, const EjectionRule& rule,
                             std::span<const std::uint32_t> neighbour_count, double time, std::uint64_t step,
                             std::vector<EjectaRecord>& out) {
@@ -20,8 +24,14 @@ std::size_t eject_particles(Particles& p, const EjectionRule& rule,
                           p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i] > v2;
     if (!left && !escaping) continue;
     p.flags[i] |= particle_ejected;
-    out.push_back(
-        {p.id[i], p.material[i], p.mass[i], time, step, p.x[i], p.y[i], p.z[i], p.vx[i], p.vy[i], p.vz[i]});
+    // Out of the hydrodynamics: no rates from now on (the integrator no longer reads them).
+    p.acceleration_x[i] = p.acceleration_y[i] = p.acceleration_z[i] = 0.0;
+    p.density_rate[i] = p.energy_rate[i] = p.viscosity_alpha_rate[i] = 0.0;
+    if (p.solid_fields) {
+      p.stress_rate_xx[i] = p.stress_rate_xy[i] = p.stress_rate_xz[i] = 0.0;
+      p.stress_rate_yy[i] = p.stress_rate_yz[i] = p.total_strain_rate[i] = p.distention_rate[i] = 0.0;
+    }
+    out.push_back(ejecta_record(p, i, time, step));
     ++count;
   }
   return count;

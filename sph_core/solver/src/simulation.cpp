@@ -51,21 +51,6 @@ void Simulation::configure() {
                      ": the artificial stress acts on solids, and no material of this problem has strength "
                      "(set 0 or leave the key out)");
   }
-  if (decomposition_ != nullptr) {
-    if (parameters_.time_step.block_levels > 0) {
-      throw InputError("time_step.block_levels = " + std::to_string(parameters_.time_step.block_levels) +
-                       ": a run over several processes takes the global time step for now (set 0, or run "
-                       "without mpirun)");
-    }
-    if (problem_.ejection.radius > 0.0) {
-      throw InputError("ejection radius " + format_number(problem_.ejection.radius) +
-                       " m: a run over several processes cannot remove ejecta yet (run without mpirun)");
-    }
-    if (problem_.late_stage.planned()) {
-      throw InputError(
-          "a run over several processes cannot switch to the late stage yet (run without mpirun)");
-    }
-  }
   problem_.particles.set_solid_fields(rate_options_.solid || porous_);
   problem_.particles.shrink_to_fit();
   // Ejected particles (e.g. from a checkpoint) stay behind the active ones.
@@ -91,7 +76,7 @@ std::vector<double> Simulation::switch_to_late_stage() {
 
 void Simulation::carry_stress_across_switch(const std::vector<double>& stress_factor) {
   auto& p = problem_.particles;
-  const auto n = static_cast<std::int64_t>(p.size());
+  const auto n = static_cast<std::int64_t>(active_);  // ejected particles stay as they left
   constexpr double max_strain = late_stage_max_reference_strain;
   const double g_down = std::max(0.0, -rate_options_.gravity[2]);
   const bool solid = p.solid_fields;
@@ -122,7 +107,7 @@ void Simulation::carry_stress_across_switch(const std::vector<double>& stress_fa
 
 void Simulation::cap_elastic_shear_strain() {
   auto& p = problem_.particles;
-  const auto n = static_cast<std::int64_t>(p.size());
+  const auto n = static_cast<std::int64_t>(active_);
   constexpr double max_strain = late_stage_max_reference_strain;
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < n; ++ii) {
@@ -143,6 +128,24 @@ void Simulation::cap_elastic_shear_strain() {
 
 void Simulation::eject() {
   auto& p = problem_.particles;
+  if (decomposition_ != nullptr) {
+    if (!(problem_.ejection.radius > 0.0)) return;  // alike on every process
+    std::vector<EjectaRecord> records;              // recorded on process 0, from what it receives
+    const std::size_t flagged =
+        eject_particles(p, problem_.ejection, rate_workspace_.neighbour_count, time_, step_, records);
+    if (!any_process(flagged > 0)) return;
+    Particles leaving = decomposition_->collect_flagged(p, particle_ejected);
+    for (std::size_t k = 0; k < leaving.size(); ++k)
+      new_ejecta_.push_back(ejecta_record(leaving, k, time_, step_));
+    if (ejected_.size() == 0) {
+      ejected_ = std::move(leaving);
+    } else {
+      ejected_.append(leaving);
+    }
+    active_ = p.size();
+    force_rebuild_ = true;
+    return;
+  }
   if (eject_particles(p, problem_.ejection, rate_workspace_.neighbour_count, time_, step_, new_ejecta_) == 0)
     return;
   order_ = ejected_last_order(p, &active_);
@@ -156,9 +159,20 @@ void Simulation::add_halos() {
   // Lists are built afresh every evaluation, so halos within the support suffice; the small skin only keeps
   // pairs at the edge of the support (equal to round-off) from being missed.
   constexpr double halo_skin = 1e-6;
+  const std::size_t owned_count = p.size();
   owned_ = decomposition_->add_halos(p, halo_skin, rate_options_.period);
   active_ = p.size();
   force_rebuild_ = true;
+  // The per-particle results of the last evaluation that a particle keeps until its next one (block time
+  // steps: an inactive particle's) move with it to the owned range; the halos' entries are filled anew.
+  const auto place_owned = [&](auto& values) {
+    if (values.size() != owned_count) return;
+    values.insert(values.begin(), owned_.begin, typename std::decay_t<decltype(values)>::value_type{});
+    values.resize(p.size());
+  };
+  place_owned(rate_workspace_.neighbour_count);
+  place_owned(rate_workspace_.signal_time);
+  place_owned(shear_modulus_);
   owned_list_.resize(owned_.size());
   for (std::size_t k = 0; k < owned_.size(); ++k)
     owned_list_[k] = static_cast<std::uint32_t>(owned_.begin + k);
@@ -167,6 +181,19 @@ void Simulation::add_halos() {
 void Simulation::take_share_of_the_particles() {
   if (decomposition_ == nullptr) return;
   auto& p = problem_.particles;
+  // Ejected particles (of a checkpoint; configure() put them last) are nobody's share: process 0 keeps them,
+  // as it keeps every later ejection.
+  if (active_ < p.size()) {
+    if (decomposition_->rank() == 0) {
+      std::vector<std::uint32_t> ejected_first;
+      for (std::size_t i = active_; i < p.size(); ++i) ejected_first.push_back(static_cast<std::uint32_t>(i));
+      for (std::size_t i = 0; i < active_; ++i) ejected_first.push_back(static_cast<std::uint32_t>(i));
+      ejected_ = p;
+      ejected_.permute(ejected_first);
+      ejected_.resize(p.size() - active_);
+    }
+    p.resize(active_);
+  }
   decomposition_->take_share(p);
   const std::vector<double> equal_work(p.size(), 1.0);
   decomposition_->distribute(p, equal_work);
@@ -176,6 +203,8 @@ void Simulation::take_share_of_the_particles() {
 const Particles& Simulation::whole_particles(Particles& gathered) {
   if (decomposition_ == nullptr) return problem_.particles;
   gathered = decomposition_->gather(problem_.particles);
+  if (ejected_.size() > 0)
+    gathered.append(ejected_);  // process 0 only: behind the others, as in a serial run
   return gathered;
 }
 
@@ -186,9 +215,15 @@ bool Simulation::any_process(bool value) const {
   return none[0] == 0.0;
 }
 
+double Simulation::least_over_processes(double value) const {
+  std::array<double, 1> least{value};
+  if (decomposition_ != nullptr) decomposition_->min(least);
+  return least[0];
+}
+
 std::size_t Simulation::total_particles() const {
   if (decomposition_ == nullptr) return problem_.particles.size();
-  std::array<double, 1> count{static_cast<double>(problem_.particles.size())};
+  std::array<double, 1> count{static_cast<double>(problem_.particles.size() + ejected_.size())};
   decomposition_->sum(count);
   return static_cast<std::size_t>(count[0]);
 }
@@ -278,7 +313,7 @@ void Simulation::update_equation_of_state(const ParticleSelection& selection) {
 }
 
 void Simulation::update_equation_of_state() {
-  update_equation_of_state(ParticleSelection::all(problem_.particles.size()));
+  update_equation_of_state(ParticleSelection::all(active_));  // ejected particles stay as they left
 }
 
 void Simulation::update_neighbours() {
@@ -311,7 +346,7 @@ void Simulation::keep_neighbours() {
 
 void Simulation::evaluate_rates() {
   if (decomposition_ == nullptr) {
-    const auto all = ParticleSelection::all(problem_.particles.size());
+    const auto all = ParticleSelection::all(active_);  // ejected particles stay as they left
     update_neighbours();
     evaluate_rates(all, all);
     return;
@@ -492,6 +527,136 @@ void Simulation::advance_block(double block) {
   }
 }
 
+NeighbourLevels Simulation::levels_with_halos() {
+  const auto level = schedule_.levels();
+  const auto scheduled = schedule_.scheduled();
+  exchange_values_.assign(problem_.particles.size(), -1.0);  // -1: not scheduled
+  for (std::size_t k = 0; k < level.size(); ++k)
+    if (scheduled[k] != 0) exchange_values_[owned_.begin + k] = level[k];
+  decomposition_->refresh_halo_values(exchange_values_);
+  held_level_.resize(exchange_values_.size());
+  held_scheduled_.resize(exchange_values_.size());
+  for (std::size_t i = 0; i < exchange_values_.size(); ++i) {
+    held_scheduled_[i] = exchange_values_[i] >= 0.0 ? 1 : 0;
+    held_level_[i] = exchange_values_[i] >= 0.0 ? static_cast<std::uint8_t>(exchange_values_[i]) : 0;
+  }
+  return {held_level_, held_scheduled_, owned_.begin};
+}
+
+std::span<const std::uint32_t> Simulation::active_with_halos(std::span<const std::uint8_t> level) {
+  const auto active = schedule_.active();
+  exchange_values_.assign(problem_.particles.size(), -1.0);  // -1: not active
+  for (const std::uint32_t k : active) exchange_values_[owned_.begin + k] = level[k];
+  decomposition_->refresh_halo_values(exchange_values_);
+  held_level_.resize(exchange_values_.size());
+  active_anywhere_.clear();
+  for (std::size_t i = 0; i < exchange_values_.size(); ++i) {
+    held_level_[i] = exchange_values_[i] >= 0.0 ? static_cast<std::uint8_t>(exchange_values_[i]) : 0;
+    if (exchange_values_[i] >= 0.0) active_anywhere_.push_back(static_cast<std::uint32_t>(i));
+  }
+  return active_anywhere_;
+}
+
+int Simulation::largest_over_processes(int value) const {
+  return static_cast<int>(-least_over_processes(-static_cast<double>(value)));
+}
+
+void Simulation::advance_block_over_processes(double block) {
+  auto& p = problem_.particles;
+  const bool integrate_density = parameters_.density == DensityMethod::continuity;
+  const TimeStepParameters parameters = time_step_parameters();
+  // A collapsed step is said with the particle (an owned one: its index after the halos are dropped).
+  const auto collapse = [&](const TimeStepCollapse& c) {
+    drop_halos();
+    throw_collapse(c, p, rate_workspace_.signal_time, parameters, time_ + schedule_.elapsed());
+  };
+  {
+    auto scope = timers_.measure("integration");
+    begin_step(p, integrator_workspace_, ParticleSelection::all(p.size()));
+  }
+  // The levels: each process those of its own particles, under the neighbour rule with its halos' levels
+  // (exchanged every sweep, so that every sweep reads the sweep before, as the serial one does).
+  add_halos();
+  update_neighbours();
+  {
+    auto scope = timers_.measure("schedule");
+    const PairSupport support = pair_support(p, problem_.box);
+    const auto owned_steps = std::span<const double>(p.time_step).subspan(owned_.begin, owned_.size());
+    const auto owned_flags = std::span<const std::uint8_t>(p.flags).subspan(owned_.begin, owned_.size());
+    try {
+      schedule_.assign_levels(block, owned_steps, owned_flags, owned_.size());
+    } catch (const TimeStepCollapse& c) {
+      collapse(c);
+    }
+    while (any_process(schedule_.raise_levels(lists_, &support, levels_with_halos()))) {
+    }
+    schedule_.begin_ticks(largest_over_processes(schedule_.finest_scheduled_level()));
+  }
+  drop_halos();
+  while (!schedule_.finished()) {
+    double dt = 0.0;
+    {
+      auto scope = timers_.measure("schedule");
+      dt = schedule_.advance_to(
+          static_cast<std::uint64_t>(least_over_processes(static_cast<double>(schedule_.next_end()))));
+    }
+    {
+      auto scope = timers_.measure("integration");
+      drift(p, dt, problem_.box, parameters_.smoothing);
+    }
+    // The rates of the active owned particles, with halos at the drifted state. Whose state is refreshed:
+    // the neighbours of an active particle on any process (halos tell which of theirs are active), as in the
+    // serial run, where every neighbour of an active particle is.
+    add_halos();
+    update_neighbours();
+    shifted_active_.clear();
+    for (const std::uint32_t k : schedule_.active())
+      shifted_active_.push_back(static_cast<std::uint32_t>(owned_.begin + k));
+    ParticleSelection needed = ParticleSelection::all(p.size());
+    {
+      auto scope = timers_.measure("schedule");
+      needed = neighbourhood_of(active_with_halos(schedule_.levels()));
+    }
+    evaluate_rates(ParticleSelection::listed(shifted_active_), needed);
+    drop_halos();
+    const auto active = ParticleSelection::listed(schedule_.active());
+    {
+      auto scope = timers_.measure("integration");
+      correct(p, schedule_.active_steps(), active, integrator_workspace_, rate_workspace_.neighbour_count,
+              parameters_.smoothing, integrate_density);
+      if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention, active);
+    }
+    update_equation_of_state(active);
+    particle_updates_ += active.size();
+    {
+      auto scope = timers_.measure("schedule");
+      (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
+    }
+    if (!schedule_.finished()) {
+      // New levels at the corrected positions: the neighbour rule with the halos' levels, the finest level
+      // agreed, and waking by the particles whose step just ended, here and on the other processes.
+      add_halos();
+      update_neighbours();
+      auto scope = timers_.measure("schedule");
+      const PairSupport support = pair_support(p, problem_.box);
+      const auto owned_steps = std::span<const double>(p.time_step).subspan(owned_.begin, owned_.size());
+      int highest = 0;
+      try {
+        highest = schedule_.choose_levels(owned_steps, lists_, &support, levels_with_halos());
+      } catch (const TimeStepCollapse& c) {
+        collapse(c);
+      }
+      schedule_.apply_levels(largest_over_processes(std::max(highest, schedule_.finest_level())));
+      schedule_.wake(active_with_halos(schedule_.levels()), held_level_, lists_, &support, owned_.begin);
+      scope.stop();
+      drop_halos();
+      auto integration = timers_.measure("integration");
+      begin_step(p, integrator_workspace_, active);
+    }
+    if (between_substeps_) between_substeps_();
+  }
+}
+
 void Simulation::step(double target_time) {
   auto& p = problem_.particles;
   const auto& plan = problem_.late_stage;
@@ -523,7 +688,9 @@ void Simulation::step(double target_time) {
     p.permute(order_);
     force_rebuild_ = true;
   }
-  if (parameters_.time_step.block_levels > 0) {
+  if (parameters_.time_step.block_levels > 0 && decomposition_ != nullptr) {
+    advance_block_over_processes(dt);
+  } else if (parameters_.time_step.block_levels > 0) {
     advance_block(dt);
   } else {
     {
@@ -553,7 +720,9 @@ void Simulation::step(double target_time) {
   eject();
   const auto mach = [&] {
     auto scope = timers_.measure("diagnostics");
-    return max_mach_number(p.vx, p.vy, p.vz, p.sound_speed, p.flags).value;
+    std::array<double, 1> negated{-max_mach_number(p.vx, p.vy, p.vz, p.sound_speed, p.flags).value};
+    if (decomposition_ != nullptr) decomposition_->min(negated);  // the largest over the processes
+    return -negated[0];
   };
   if (plan.planned() && !late_stage_active_ && time_ >= plan.transition_time) {
     carry_stress_across_switch(switch_to_late_stage());
@@ -582,6 +751,20 @@ void Simulation::step(double target_time) {
   }
 }
 
+EjectedTotals Simulation::ejected_totals() const {
+  EjectedTotals totals;
+  const auto add = [&totals](const Particles& p) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if ((p.flags[i] & particle_ejected) == 0) continue;
+      ++totals.particles;
+      totals.mass += p.mass[i];
+    }
+  };
+  add(problem_.particles);
+  add(ejected_);
+  return totals;
+}
+
 double Simulation::mean_neighbours() const {
   std::size_t active = 0;
   for (const auto f : problem_.particles.flags)
@@ -592,18 +775,31 @@ double Simulation::mean_neighbours() const {
   return counts[1] == 0.0 ? 0.0 : counts[0] / counts[1];
 }
 
+namespace {
+
+// The additive quantities, for sums over processes.
+std::array<double, 9> additive_part(const ConservedQuantities& q) {
+  return {q.mass,
+          q.momentum_x,
+          q.momentum_y,
+          q.momentum_z,
+          q.kinetic_energy,
+          q.internal_energy,
+          q.potential_energy,
+          q.total_energy,
+          q.absolute_momentum};
+}
+
+}  // namespace
+
 ConservedQuantities Simulation::conserved() const {
   auto q = measure_conserved(problem_.particles, parameters_.gravity);
   if (decomposition_ != nullptr) {
-    std::array<double, 9> sums{q.mass,
-                               q.momentum_x,
-                               q.momentum_y,
-                               q.momentum_z,
-                               q.kinetic_energy,
-                               q.internal_energy,
-                               q.potential_energy,
-                               q.total_energy,
-                               q.absolute_momentum};
+    std::array<double, 9> sums = additive_part(q);
+    if (ejected_.size() > 0) {  // process 0: the ejecta's part
+      const auto ejecta = additive_part(measure_conserved(ejected_, parameters_.gravity));
+      for (std::size_t k = 0; k < sums.size(); ++k) sums[k] += ejecta[k];
+    }
     decomposition_->sum(sums);
     q.mass = sums[0];
     q.momentum_x = sums[1];

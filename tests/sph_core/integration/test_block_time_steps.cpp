@@ -4,6 +4,7 @@
 // and the schedule on a chain whose one particle needs a short step.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -111,6 +112,45 @@ TEST(BlockSchedule, LevelsRefineWithinTheBlockAndCoarsenOnlyWhereAligned) {
   // From 0.5 with 1/8 to 0.625; 1/4 is not aligned there (0.625 / 0.25 is not whole), so 1/8 again to
   // 0.75, which is aligned to 1/4: to 1.0. Three substeps.
   EXPECT_EQ(count, 3);
+}
+
+// Waking: particles 0 and 1 end their steps together; 0 now needs level 6 and wakes its neighbour 1, which
+// had chosen level 1, to level 5, cut short at the next tick of that level. 1's new level does not wake 2 in
+// the same tick (a woken particle wakes nobody: the result does not depend on the order of the particles, nor
+// on how they are spread over processes); 2 is woken when 1's shortened step ends. Every step still tiles the
+// block.
+TEST(BlockSchedule, TheFinestWakerDecidesAndAWokenParticleWakesNobody) {
+  const std::size_t n = 4;
+  const auto lists = chain(n);
+  std::vector<double> step{0.5, 0.5, 1.0, 1.0};
+  const std::vector<std::uint8_t> flags(n, particle_active);
+  BlockSchedule s;
+  s.start(1.0, step, flags, n, lists);
+  ASSERT_EQ(s.finest_level(), 1);
+  double time = s.advance();
+  ASSERT_EQ(s.active().size(), 2u);  // 0 and 1, at half the block
+  step[0] = 1.0 / 64;
+  s.relevel(step, lists);
+  EXPECT_EQ(s.finest_level(), 6);
+  EXPECT_EQ(int(s.levels()[0]), 6);
+  EXPECT_EQ(int(s.levels()[1]), 5);  // woken from 1
+  EXPECT_EQ(int(s.levels()[2]), 0);  // not by the woken 1
+  std::vector<double> elapsed(n, 0.0);
+  for (const auto i : s.active()) elapsed[i] += s.active_steps()[i];
+  bool two_woken = false;
+  while (!s.finished()) {
+    time += s.advance();
+    for (const auto i : s.active()) elapsed[i] += s.active_steps()[i];
+    const bool one_ended = std::find(s.active().begin(), s.active().end(), 1u) != s.active().end();
+    s.relevel(step, lists);
+    if (one_ended && !two_woken) {
+      EXPECT_EQ(int(s.levels()[2]), 4) << "woken by 1 when its own step ended";
+      two_woken = true;
+    }
+  }
+  EXPECT_TRUE(two_woken);
+  EXPECT_DOUBLE_EQ(time, 1.0);
+  for (std::size_t i = 0; i < n; ++i) EXPECT_DOUBLE_EQ(elapsed[i], 1.0) << "particle " << i;
 }
 
 TEST(BlockSchedule, CollapsedStepIsAnErrorThatNamesTheParticle) {

@@ -23,8 +23,10 @@ class MpiDecomposition final : public Decomposition {
   void distribute(Particles& particles, std::span<const double> work) override;
   OwnedRange add_halos(Particles& particles, double skin, const std::array<double, 3>& period) override;
   void refresh_halos(Particles& particles, std::span<const std::string_view> fields) override;
+  void refresh_halo_values(std::span<double> values) override;
   void remove_halos(Particles& particles) override;
   [[nodiscard]] Particles gather(Particles& particles) const override;
+  [[nodiscard]] Particles collect_flagged(Particles& particles, std::uint8_t flag) override;
   void sum(std::span<double> values) const override { comm_.sum(values); }
   void min(std::span<double> values) const override { comm_.min(values); }
   [[nodiscard]] int rank() const override { return comm_.rank(); }

@@ -68,10 +68,21 @@ OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, 
 void refresh_halos(Particles& particles, const HaloPlan& plan, const OwnedRange& owned,
                    std::span<const std::string_view> fields, const Communicator& comm);
 
+// The same for one value per held particle that is no particle field (e.g. a block time step level): `values`
+// holds one per owned and halo particle, in the order insert_halos() left them; every halo takes its owner's.
+void refresh_halo_values(std::span<double> values, const HaloPlan& plan, const OwnedRange& owned,
+                         const Communicator& comm);
+
 // Every rank's particles (no halos), to rank 0, in rank order: with the ranks' curve ranges, the order of a
 // serial run's curve sort. Empty on the other ranks. Collective.
 [[nodiscard]] Particles gather_particles(Particles& particles, const std::vector<std::uint64_t>& keys,
                                          const Communicator& comm);
+
+// Removes every particle of this rank that carries `flag` (of particles and keys; the others keep their
+// order) and gathers them to rank 0 in rank order: particles that leave the computation, such as ejecta.
+// Returns them on rank 0, empty on the others. No halos may be held. Collective.
+[[nodiscard]] Particles collect_flagged(Particles& particles, std::vector<std::uint64_t>& keys,
+                                        std::uint8_t flag, const Communicator& comm);
 
 // Removes the halos again: only the owned range stays (of particles and keys).
 void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned);

@@ -19,7 +19,9 @@
 //     a block it is applied to each particle when its step ends, and a neighbour in the middle of a step
 //     that the rule forbids is woken: its step is cut short at the next tick aligned to the allowed
 //     level, and it continues at that level (Saitoh & Makino 2009: without waking, a blast wave reaches
-//     cold gas that is still in a long step).
+//     cold gas that is still in a long step). The particles that wake are those whose step just ended, at
+//     their new levels; a particle woken does not wake others in the same tick (so the result does not
+//     depend on the order in which they are visited, nor on how the particles are spread over processes).
 // The block length is the longest particle step, at most 2^max_levels times the shortest one and at
 // most max_step; at max_levels = 0 the block is the global step and every particle has level 0, which
 // is exactly the global scheme. Inside a block a particle may go finer than max_levels (a limit that
@@ -54,6 +56,15 @@ inline constexpr int block_neighbour_levels = 1;
 // The smallest level l >= 0 with block / 2^l <= step (0 when step >= block).
 [[nodiscard]] int block_level(double block, double step);
 
+// The levels the neighbour rule reads, indexed like the neighbour lists: in a serial run the schedule's own;
+// over several processes those of the owned particles and of the halo copies (their owners' levels), with the
+// schedule's particle i at list index i + offset. scheduled[j] == 0: j is not scheduled (fixed or ejected).
+struct NeighbourLevels {
+  std::span<const std::uint8_t> level;
+  std::span<const std::uint8_t> scheduled;
+  std::size_t offset = 0;
+};
+
 class BlockSchedule {
  public:
   // Starts a block of length `block` for the moving (neither fixed nor ejected) particles among the
@@ -79,6 +90,35 @@ class BlockSchedule {
   void relevel(std::span<const double> time_step, const NeighbourLists& lists,
                const PairSupport* support = nullptr);
 
+  // The pieces of start(), advance() and relevel(), for a schedule over several processes, which agree on the
+  // finest level and the next tick between them (Simulation does) and read their neighbours' levels through
+  // NeighbourLevels.
+  //   start() = assign_levels(); raise_levels() until no process changes; begin_ticks(finest over all)
+  void assign_levels(double block, std::span<const double> time_step, std::span<const std::uint8_t> flags,
+                     std::size_t count);
+  // One sweep of the neighbour rule over every scheduled particle, reading `levels` (of the sweep before);
+  // true when a level rose.
+  bool raise_levels(const NeighbourLists& lists, const PairSupport* support, const NeighbourLevels& levels);
+  void begin_ticks(int finest);  // finest >= finest_scheduled_level()
+  [[nodiscard]] int finest_scheduled_level() const;
+  //   advance() = advance_to(next_end() smallest over all)
+  [[nodiscard]] std::uint64_t next_end() const;
+  double advance_to(std::uint64_t tick);
+  //   relevel() = choose_levels(); apply_levels(largest over all, at least finest_level());
+  //               wake(the active particles, at their new levels)
+  // choose_levels() returns the largest level chosen (0 when none is active).
+  int choose_levels(std::span<const double> time_step, const NeighbourLists& lists,
+                    const PairSupport* support, const NeighbourLevels& levels);
+  void apply_levels(int finest);
+  // Wakes the scheduled particles of this schedule that are neighbours (within the support) of `wakers`
+  // (list indices) more than block_neighbour_levels levels finer than they are; waker_level[k]: the level
+  // of list index k (read for the wakers only).
+  void wake(std::span<const std::uint32_t> wakers, std::span<const std::uint8_t> waker_level,
+            const NeighbourLists& lists, const PairSupport* support, std::size_t offset);
+  // Per particle: its level, and whether it is scheduled (for NeighbourLevels).
+  [[nodiscard]] std::span<const std::uint8_t> levels() const { return level_; }
+  [[nodiscard]] std::span<const std::uint8_t> scheduled() const { return scheduled_; }
+
   [[nodiscard]] double block() const { return block_; }
   // Time from the start of the block to the current tick, s.
   [[nodiscard]] double elapsed() const {
@@ -91,8 +131,9 @@ class BlockSchedule {
 
  private:
   void refine_to(int level);  // rescales the ticks so that `level` exists
-  [[nodiscard]] int neighbour_floor(std::size_t i, const NeighbourLists& lists,
-                                    const PairSupport* support) const;
+  [[nodiscard]] NeighbourLevels own_levels() const { return {level_, scheduled_, 0}; }
+  [[nodiscard]] static int neighbour_floor(std::size_t i, const NeighbourLists& lists,
+                                           const PairSupport* support, const NeighbourLevels& levels);
 
   double block_ = 0.0;
   int finest_ = 0;
@@ -103,6 +144,9 @@ class BlockSchedule {
   std::vector<std::uint8_t> scheduled_;    // per particle: moving and in the lists
   std::vector<std::uint32_t> active_;      // particles whose step ends at tick_
   std::vector<double> active_steps_;       // per particle: the step of an active particle, s
+  std::vector<std::uint8_t> wanted_;       // per active particle: its next level (choose_levels)
+  std::vector<std::uint8_t> wake_floor_;   // per particle: the level a waker asks for (wake)
+  std::vector<std::uint32_t> woken_;       // the particles with a wake_floor_
   std::vector<std::size_t> level_counts_;
 };
 

@@ -93,6 +93,9 @@ struct Particles {
   void reserve(std::size_t n);
   void shrink_to_fit();  // releases the growth slack of every field (set-ups build by push_back)
 
+  // Appends the particles of `other`, which must hold the same fields (solid_fields alike).
+  void append(const Particles& other);
+
   // Reorders every registered field: new index k takes the particle at old index order[k].
   void permute(std::span<const std::uint32_t> order);
 

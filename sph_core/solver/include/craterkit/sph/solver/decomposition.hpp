@@ -36,12 +36,20 @@ class Decomposition {
   virtual OwnedRange add_halos(Particles& particles, double skin, const std::array<double, 3>& period) = 0;
   // The halo copies take their owners' current values of the named fields (Particles::for_each_field names).
   virtual void refresh_halos(Particles& particles, std::span<const std::string_view> fields) = 0;
+  // The same for values that are no particle field (one per owned and halo particle, as add_halos() left
+  // them): every halo's value becomes its owner's.
+  virtual void refresh_halo_values(std::span<double> values) = 0;
   // Removes the halos: the owned particles are 0 .. size()-1 again.
   virtual void remove_halos(Particles& particles) = 0;
 
   // Every process's particles (no halos held), to process 0 in curve order: the particle set a serial run
   // would hold, for snapshots and checkpoints. Empty on the other processes.
   [[nodiscard]] virtual Particles gather(Particles& particles) const = 0;
+
+  // Removes this process's particles that carry `flag` (ejecta, which leave the computation; no halos held)
+  // and gathers them to process 0, which keeps them from then on: returned there, in process order; empty
+  // on the other processes.
+  [[nodiscard]] virtual Particles collect_flagged(Particles& particles, std::uint8_t flag) = 0;
 
   // Element-wise sum and minimum over the processes, in place.
   virtual void sum(std::span<double> values) const = 0;

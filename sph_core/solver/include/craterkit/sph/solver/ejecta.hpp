@@ -12,10 +12,10 @@
 //    not). A particle falling towards the surface is kept whatever its speed: it will hit it.
 // It is flagged particle_ejected and taken out of the hydrodynamics: the
 // engine keeps ejected particles at the end of the arrays, outside the neighbour search, the pair loops,
-// the time step and the integrator, frozen at their launch state. Mass, momentum and energy stay in the
-// particle set (the conserved-quantity sums include them; a frozen particle keeps its kinetic plus
-// potential energy, as a ballistic one in constant gravity would), so target + projectile + ejecta mass
-// is exactly the initial mass.
+// the time step and the integrator, frozen at their launch state, with their rates zero. Mass, momentum and
+// energy stay in the particle set (the conserved-quantity sums include them; a frozen particle keeps its
+// kinetic plus potential energy, as a ballistic one in constant gravity would), so target + projectile +
+// ejecta mass is exactly the initial mass.
 //
 // Each ejection is recorded (particle id, material, mass, launch time and step, launch position and
 // velocity), for ejecta.csv (io/ejecta_csv.hpp).
@@ -43,6 +43,10 @@ struct EjectionRule {
   double radius = 0.0;        // R_ej, m; <= 0: no ejection at all
   double escape_speed = 0.0;  // m/s; <= 0: only the radius rule
 };
+
+// The record of particle i, launched now (its current position and velocity).
+[[nodiscard]] EjectaRecord ejecta_record(const Particles& particles, std::size_t i, double time,
+                                         std::uint64_t step);
 
 // Flags every moving particle that the rule above ejects as particle_ejected and appends its record to
 // `out` (in index order). neighbour_count[i]: interacting neighbours of particle i in its last rate

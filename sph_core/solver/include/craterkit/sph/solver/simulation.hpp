@@ -46,8 +46,14 @@
 // state; the summed density is sent again before the equation of state), and the time step and the conserved
 // quantities are reduced over the processes. The per-particle phases (predict, equation of state, correct)
 // run on the owned particles, so a distributed run follows the serial one to round-off (the pair sums add the
-// same terms, but the lists order them by each process's own octree). For now with the global time step
-// only, without ejection and without the late-stage switch (refused: InputError).
+// same terms, but the lists order them by each process's own octree). With block time steps every process
+// schedules its own particles and reads its halos' levels (advance_block_over_processes(): the finest level
+// and the next tick agreed between the processes, halos at every substep's evaluation and new levels, the
+// neighbours of active particles on other processes refreshed as the serial run refreshes them). Ejected
+// particles leave the processes' pieces: process 0
+// collects them (Decomposition::collect_flagged) and holds them from then on, for the ejecta log, the
+// conserved quantities and the whole particle set of the output. The late-stage switch happens at the same
+// time on every process, and its Mach numbers are maxima over the processes.
 //
 // The solver knows no files, configurations or scenarios: run/run_simulation.hpp drives it with outputs
 // around the steps, and a scenario (run/standard_problems.hpp, the impact library) builds its ProblemSetup.
@@ -86,6 +92,12 @@ struct SolverState {
   double A_low = 0.0;                // Pa, of material 0 (late stage active)
   double mach_at_transition = 0.0;   // max |v|/c just after the switch
   double late_stage_max_mach = 0.0;  // max |v|/c since
+};
+
+// Particles ejected so far and their mass, kg.
+struct EjectedTotals {
+  std::size_t particles = 0;
+  double mass = 0.0;
 };
 
 class Simulation {
@@ -143,6 +155,8 @@ class Simulation {
   }
   // True when `value` is true on some process: decisions that every process must take alike.
   [[nodiscard]] bool any_process(bool value) const;
+  // The smallest `value` over the processes (e.g. process 0's, with infinity elsewhere).
+  [[nodiscard]] double least_over_processes(double value) const;
   // Particles over all processes.
   [[nodiscard]] std::size_t total_particles() const;
 
@@ -150,7 +164,9 @@ class Simulation {
   [[nodiscard]] bool late_stage_active() const { return late_stage_active_; }
   [[nodiscard]] double mach_at_transition() const { return mach_at_transition_; }
   [[nodiscard]] double late_stage_max_mach() const { return late_stage_max_mach_; }
-  // Ejections since the last call (in order), for the ejecta log.
+  // Ejected so far (distributed: process 0 holds them all; elsewhere none).
+  [[nodiscard]] EjectedTotals ejected_totals() const;
+  // Ejections since the last call (in order), for the ejecta log (distributed: on process 0).
   [[nodiscard]] std::vector<EjectaRecord> take_new_ejecta() { return std::exchange(new_ejecta_, {}); }
 
   // Everything a checkpoint needs besides the particles.
@@ -185,6 +201,15 @@ class Simulation {
   void update_equation_of_state();
   void update_equation_of_state(const ParticleSelection& selection);
   void advance_block(double block);  // block time steps (block_time_steps.hpp) over one block
+  // The same over several processes: the schedule of the owned particles, with the halos' levels, the finest
+  // level and the next tick agreed between the processes (docs/parallel.md).
+  void advance_block_over_processes(double block);
+  // Halos held: the levels of the owned particles and their halos' (exchanged), for the neighbour rule.
+  NeighbourLevels levels_with_halos();
+  // Halos held: the particles whose step ends at this tick, owned or halo (list indices), with `level`
+  // (per owned particle) exchanged into held_level_ for them.
+  std::span<const std::uint32_t> active_with_halos(std::span<const std::uint8_t> level);
+  [[nodiscard]] int largest_over_processes(int value) const;
   // The given particles and all their neighbours (block time steps: whose state an active particle reads).
   ParticleSelection neighbourhood_of(std::span<const std::uint32_t> particles);
   [[nodiscard]] TimeStepParameters time_step_parameters() const;
@@ -233,9 +258,14 @@ class Simulation {
   double mach_at_transition_ = 0.0;
   double late_stage_max_mach_ = 0.0;
   std::vector<EjectaRecord> new_ejecta_;
+  Particles ejected_;  // distributed runs, process 0: every ejected particle (elsewhere empty)
   Decomposition* decomposition_ = nullptr;  // distributed runs only (not owned)
   OwnedRange owned_{};                      // while halos are held
   std::vector<std::uint32_t> owned_list_;   // owned_ as a selection
+  // Distributed block steps: scratch of the exchanges of levels and of the active particles.
+  std::vector<double> exchange_values_;
+  std::vector<std::uint8_t> held_level_, held_scheduled_;
+  std::vector<std::uint32_t> active_anywhere_, shifted_active_;
 };
 
 }  // namespace craterkit::sph
