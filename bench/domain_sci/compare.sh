@@ -19,7 +19,8 @@ d = json.load(open(sys.argv[1]))
 wall = d["wall_seconds"]
 phases = sorted(d["phase_seconds"].items(), key=lambda kv: -kv[1])
 shares = ", ".join(f"{k} {100 * v / wall:.0f} %" for k, v in phases if v / wall >= 0.01)
-print(f"| {sys.argv[2]} | {d[\"steps\"]} | {d[\"time\"]:.4g} | {wall:.1f} | {d[\"particle_updates_per_second\"]:.3g} | {shares} |")
+row = (sys.argv[2], d["steps"], d["time"], wall, d["particle_updates_per_second"], shares)
+print("| %s | %d | %.4g | %.1f | %.3g | %s |" % row)
 ' "$1" "$2"
 }
 echo "| processes x threads | blocks | t reached (s) | wall (s) | particle updates/s | phases |"
