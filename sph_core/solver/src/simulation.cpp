@@ -461,10 +461,23 @@ namespace {
 
 }  // namespace
 
+void Simulation::end_substep(const ParticleSelection& active, const TimeStepParameters& parameters) {
+  auto& p = problem_.particles;
+  {
+    auto scope = timers_.measure("integration");
+    correct(p, schedule_.active_steps(), active, integrator_workspace_, rate_workspace_.neighbour_count,
+            parameters_.smoothing, parameters_.density == DensityMethod::continuity);
+    if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention, active);
+  }
+  update_equation_of_state(active);
+  particle_updates_ += active.size();
+  auto scope = timers_.measure("schedule");
+  (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
+}
+
 void Simulation::advance_block(double block) {
   auto& p = problem_.particles;
   const auto all = ParticleSelection::all(p.size());
-  const bool integrate_density = parameters_.density == DensityMethod::continuity;
   {
     auto scope = timers_.measure("integration");
     begin_step(p, integrator_workspace_, all);
@@ -502,17 +515,9 @@ void Simulation::advance_block(double block) {
       needed = neighbourhood_of(schedule_.active());
     }
     evaluate_rates(active, needed);
-    {
-      auto scope = timers_.measure("integration");
-      correct(p, schedule_.active_steps(), active, integrator_workspace_, rate_workspace_.neighbour_count,
-              parameters_.smoothing, integrate_density);
-      if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention, active);
-    }
-    update_equation_of_state(active);
-    particle_updates_ += active.size();
+    end_substep(active, parameters);
     {
       auto scope = timers_.measure("schedule");
-      (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
       if (!schedule_.finished()) {
         try {
           const PairSupport support = pair_support(p, problem_.box);
@@ -563,7 +568,6 @@ int Simulation::largest_over_processes(int value) const {
 
 void Simulation::advance_block_over_processes(double block) {
   auto& p = problem_.particles;
-  const bool integrate_density = parameters_.density == DensityMethod::continuity;
   const TimeStepParameters parameters = time_step_parameters();
   // A collapsed step is said with the particle (an owned one: its index after the halos are dropped).
   const auto collapse = [&](const TimeStepCollapse& c) {
@@ -620,18 +624,7 @@ void Simulation::advance_block_over_processes(double block) {
     evaluate_rates(ParticleSelection::listed(shifted_active_), needed);
     drop_halos();
     const auto active = ParticleSelection::listed(schedule_.active());
-    {
-      auto scope = timers_.measure("integration");
-      correct(p, schedule_.active_steps(), active, integrator_workspace_, rate_workspace_.neighbour_count,
-              parameters_.smoothing, integrate_density);
-      if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention, active);
-    }
-    update_equation_of_state(active);
-    particle_updates_ += active.size();
-    {
-      auto scope = timers_.measure("schedule");
-      (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
-    }
+    end_substep(active, parameters);
     if (!schedule_.finished()) {
       // New levels at the corrected positions: the neighbour rule with the halos' levels, the finest level
       // agreed, and waking by the particles whose step just ended, here and on the other processes.

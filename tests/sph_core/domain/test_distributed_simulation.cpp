@@ -266,6 +266,22 @@ TEST(DistributedSimulation, TinyImpactFollowsTheSerialRun) {
   expect_serial(config.simulation.solver, run.problem, 20);
 }
 
+// The tiny impact with particles ejected above the surface beyond 1 m from the impact point and the
+// late-stage switch at the end of step `switch_after` (found by a run without the switch, which also must
+// eject some).
+ProblemSetup ejecting_and_switching(const impact::ImpactConfig& config, int switch_after) {
+  impact::ImpactRun run = impact::build_impact_run(config);
+  EXPECT_TRUE(run.problem.late_stage.planned());
+  run.problem.ejection = {1.0, 0.0};
+  ProblemSetup probe_problem = run.problem;
+  probe_problem.late_stage.transition_time = 1e9;  // planned, never reached
+  Simulation probe(config.simulation.solver, probe_problem);
+  for (int s = 0; s < switch_after; ++s) probe.step(1.0);
+  EXPECT_GT(probe.ejected_totals().particles, 0u);
+  run.problem.late_stage.transition_time = probe.time();
+  return run.problem;
+}
+
 // The same impact through ejection and the late-stage switch, 60 steps: particles above the surface beyond
 // 1 m from the impact point are ejected (the projectile's upper part as it flattens; the set-up's own rule,
 // at the domain radius, ejects nothing this early), and the medium switches at the end of step 30. The
@@ -274,16 +290,7 @@ TEST(DistributedSimulation, TinyImpactFollowsTheSerialRun) {
 // particles at the same steps, and stays at round-off (measured 1e-14 on 2 and 3 ranks; tolerance 1e-12).
 TEST(DistributedSimulation, TinyImpactEjectsAndSwitchesToTheLateStageAsTheSerialRunDoes) {
   const impact::ImpactConfig config = tiny_impact_config();
-  impact::ImpactRun run = impact::build_impact_run(config);
-  ASSERT_TRUE(run.problem.late_stage.planned());
-  run.problem.ejection = {1.0, 0.0};
-  ProblemSetup probe_problem = run.problem;
-  probe_problem.late_stage.transition_time = 1e9;  // planned, never reached
-  Simulation probe(config.simulation.solver, probe_problem);
-  for (int s = 0; s < 30; ++s) probe.step(1.0);
-  ASSERT_GT(probe.ejected_totals().particles, 0u);
-  run.problem.late_stage.transition_time = probe.time();
-  expect_serial(config.simulation.solver, run.problem, 60, round_off);
+  expect_serial(config.simulation.solver, ejecting_and_switching(config, 30), 60, round_off);
 }
 
 // The impact's own block time steps (tiny_base(): the default block_levels). Its first five blocks are well
@@ -301,13 +308,7 @@ TEST(DistributedSimulation, TinyImpactWithBlockTimeStepsFollowsTheSerialRun) {
   first_blocks.ejection = {};
   expect_serial(config.simulation.solver, first_blocks, 5, round_off);
 
-  run.problem.ejection = {1.0, 0.0};
-  ProblemSetup probe_problem = run.problem;
-  probe_problem.late_stage.transition_time = 1e9;
-  Simulation probe(config.simulation.solver, probe_problem);
-  for (int s = 0; s < 15; ++s) probe.step(1.0);
-  run.problem.late_stage.transition_time = probe.time();
-  expect_serial(config.simulation.solver, run.problem, 30);
+  expect_serial(config.simulation.solver, ejecting_and_switching(config, 15), 30);
 }
 
 // A checkpoint holding ejected particles, written by the serial run just after the late-stage switch (step 30
@@ -317,15 +318,8 @@ TEST(DistributedSimulation, TinyImpactWithBlockTimeStepsFollowsTheSerialRun) {
 TEST(DistributedSimulation, ImpactCheckpointWithEjectaResumesOverTheRanks) {
   const auto comm = Communicator::world();
   const impact::ImpactConfig config = tiny_impact_config();
-  impact::ImpactRun run = impact::build_impact_run(config);
-  run.problem.ejection = {1.0, 0.0};
-  ProblemSetup probe_problem = run.problem;
-  probe_problem.late_stage.transition_time = 1e9;
-  Simulation probe(config.simulation.solver, probe_problem);
-  for (int s = 0; s < 30; ++s) probe.step(1.0);
-  run.problem.late_stage.transition_time = probe.time();
-
-  Simulation serial(config.simulation.solver, run.problem);
+  const ProblemSetup problem = ejecting_and_switching(config, 30);
+  Simulation serial(config.simulation.solver, problem);
   for (int s = 0; s < 30; ++s) serial.step(1.0);
   ASSERT_TRUE(serial.late_stage_active());
   ASSERT_GT(serial.ejected_totals().particles, 0u);
@@ -334,7 +328,7 @@ TEST(DistributedSimulation, ImpactCheckpointWithEjectaResumesOverTheRanks) {
   for (int s = 0; s < 30; ++s) serial.step(1.0);
 
   MpiDecomposition decomposition(comm);
-  Simulation resumed(config.simulation.solver, run.problem, checkpoint, state, &decomposition);
+  Simulation resumed(config.simulation.solver, problem, checkpoint, state, &decomposition);
   for (int s = 0; s < 30; ++s) resumed.step(1.0);
   EXPECT_EQ(resumed.total_particles(), serial.particles().size());
   Particles gathered;

@@ -201,6 +201,8 @@ class Simulation {
   void update_equation_of_state();
   void update_equation_of_state(const ParticleSelection& selection);
   void advance_block(double block);  // block time steps (block_time_steps.hpp) over one block
+  // Block time steps, after the rates of the active particles: their correction, state and own next step.
+  void end_substep(const ParticleSelection& active, const TimeStepParameters& parameters);
   // The same over several processes: the schedule of the owned particles, with the halos' levels, the finest
   // level and the next tick agreed between the processes (docs/parallel.md).
   void advance_block_over_processes(double block);
