@@ -462,6 +462,45 @@ OwnedRange insert_halos(Particles& particles, std::vector<std::uint64_t>& keys, 
   return owned;
 }
 
+namespace {
+
+// Sends every rank q the values of the owned particles plan.send[q] (pack(send list, bytes) appends them,
+// bytes_per_halo a particle) and lays out what arrives where insert_halos() put the halos: lower ranks'
+// before the owned range, in rank order, higher ranks' after it; unpack(first slot, count, bytes) per rank.
+// The send lists index the owned particles as they were before insert_halos(): they start at owned.begin now.
+template <class Pack, class Unpack>
+void exchange_into_halos(const HaloPlan& plan, const OwnedRange& owned, std::size_t held,
+                         std::size_t bytes_per_halo, const Communicator& comm, const char* caller,
+                         Pack&& pack, Unpack&& unpack) {
+  RankBytes send;
+  send.counts.resize(plan.send.size());
+  for (std::size_t q = 0; q < plan.send.size(); ++q) {
+    const std::size_t before = send.bytes.size();
+    pack(std::span<const std::uint32_t>(plan.send[q]), send.bytes);
+    send.counts[q] = send.bytes.size() - before;
+  }
+  const RankBytes received = comm.all_to_all(send);
+  const auto mismatch = [caller] {
+    return std::logic_error(std::string(caller) +
+                            ": the halos are not those of this plan (insert_halos first)");
+  };
+  std::size_t slot = 0, at = 0;
+  for (std::size_t q = 0; q < received.counts.size(); ++q) {
+    if (q == std::size_t(comm.rank())) {
+      if (slot != owned.begin) throw mismatch();
+      slot = owned.end;
+    }
+    const std::size_t count = bytes_per_halo ? received.counts[q] / bytes_per_halo : 0;
+    if (slot + count > held) throw mismatch();
+    unpack(slot, count, received.bytes.data() + at);
+    slot += count;
+    at += received.counts[q];
+  }
+  if (bytes_per_halo && slot != held) throw mismatch();
+}
+
+}  // namespace
+
 void refresh_halos(Particles& particles, const HaloPlan& plan, const OwnedRange& owned,
                    std::span<const std::string_view> fields, const Communicator& comm) {
   if (plan.send.size() != std::size_t(comm.size()))
@@ -476,53 +515,30 @@ void refresh_halos(Particles& particles, const HaloPlan& plan, const OwnedRange&
   const auto named = [&](std::string_view field) {
     return std::find(fields.begin(), fields.end(), field) != fields.end();
   };
-
-  // The send lists index the owned particles as they were before insert_halos(): now they start at
-  // owned.begin.
-  RankBytes send;
-  send.counts.resize(plan.send.size());
-  for (std::size_t q = 0; q < plan.send.size(); ++q) {
-    const std::size_t before = send.bytes.size();
-    particles.for_each_field([&](std::string_view field, const auto& values) {
-      if (!named(field)) return;
-      using T = element_of<decltype(values)>;
-      for (const std::uint32_t i : plan.send[q]) {
-        const auto* bytes = reinterpret_cast<const std::byte*>(&values[owned.begin + i]);
-        send.bytes.insert(send.bytes.end(), bytes, bytes + sizeof(T));
-      }
-    });
-    send.counts[q] = send.bytes.size() - before;
-  }
-  const RankBytes received = comm.all_to_all(send);
-
-  // The halos of rank q sit where insert_halos() put them: lower ranks' before the owned range, in rank
-  // order, higher ranks' after it; each block field by field in the order of for_each_field.
   std::size_t bytes_per_halo = 0;
   particles.for_each_field([&](std::string_view field, const auto& values) {
     if (named(field)) bytes_per_halo += sizeof(element_of<decltype(values)>);
   });
-  const auto mismatch = [] {
-    return std::logic_error("refresh_halos: the halos are not those of this plan (insert_halos first)");
-  };
-  std::size_t slot = 0, at = 0;
-  for (std::size_t q = 0; q < received.counts.size(); ++q) {
-    if (q == std::size_t(comm.rank())) {
-      if (slot != owned.begin) throw mismatch();
-      slot = owned.end;
-    }
-    const std::size_t count = bytes_per_halo ? received.counts[q] / bytes_per_halo : 0;
-    if (slot + count > particles.size()) throw mismatch();
-    const std::byte* source = received.bytes.data() + at;
-    particles.for_each_field([&](std::string_view field, auto& values) {
-      if (!named(field)) return;
-      using T = element_of<decltype(values)>;
-      if (count) std::memcpy(values.data() + slot, source, count * sizeof(T));
-      source += count * sizeof(T);
-    });
-    slot += count;
-    at += received.counts[q];
-  }
-  if (bytes_per_halo && slot != particles.size()) throw mismatch();
+  exchange_into_halos(
+      plan, owned, particles.size(), bytes_per_halo, comm, "refresh_halos",
+      [&](std::span<const std::uint32_t> send, std::vector<std::byte>& out) {
+        particles.for_each_field([&](std::string_view field, const auto& values) {
+          if (!named(field)) return;
+          using T = element_of<decltype(values)>;
+          for (const std::uint32_t i : send) {
+            const auto* bytes = reinterpret_cast<const std::byte*>(&values[owned.begin + i]);
+            out.insert(out.end(), bytes, bytes + sizeof(T));
+          }
+        });
+      },
+      [&](std::size_t slot, std::size_t count, const std::byte* source) {
+        particles.for_each_field([&](std::string_view field, auto& values) {
+          if (!named(field)) return;
+          using T = element_of<decltype(values)>;
+          if (count) std::memcpy(values.data() + slot, source, count * sizeof(T));
+          source += count * sizeof(T);
+        });
+      });
 }
 
 void refresh_halo_values(std::span<double> values, const HaloPlan& plan, const OwnedRange& owned,
@@ -531,34 +547,17 @@ void refresh_halo_values(std::span<double> values, const HaloPlan& plan, const O
     throw std::invalid_argument("refresh_halo_values: the halo plan is for another rank count");
   if (owned.begin > owned.end || owned.end > values.size())
     throw std::invalid_argument("refresh_halo_values: owned range outside the values");
-  RankBytes send;
-  send.counts.resize(plan.send.size());
-  for (std::size_t q = 0; q < plan.send.size(); ++q) {
-    const std::size_t before = send.bytes.size();
-    send.bytes.resize(before + plan.send[q].size() * sizeof(double));
-    std::byte* destination = send.bytes.data() + before;
-    for (const std::uint32_t i : plan.send[q]) {
-      std::memcpy(destination, &values[owned.begin + i], sizeof(double));
-      destination += sizeof(double);
-    }
-    send.counts[q] = send.bytes.size() - before;
-  }
-  const RankBytes received = comm.all_to_all(send);
-  // Lower ranks' halos before the owned range, higher ranks' after it, in rank order (insert_halos).
-  std::size_t slot = 0, at = 0;
-  for (std::size_t q = 0; q < received.counts.size(); ++q) {
-    if (q == std::size_t(comm.rank())) {
-      if (slot != owned.begin) throw std::logic_error("refresh_halo_values: not the halos of this plan");
-      slot = owned.end;
-    }
-    const std::size_t count = received.counts[q] / sizeof(double);
-    if (slot + count > values.size())
-      throw std::logic_error("refresh_halo_values: not the halos of this plan");
-    if (count) std::memcpy(values.data() + slot, received.bytes.data() + at, count * sizeof(double));
-    slot += count;
-    at += received.counts[q];
-  }
-  if (slot != values.size()) throw std::logic_error("refresh_halo_values: not the halos of this plan");
+  exchange_into_halos(
+      plan, owned, values.size(), sizeof(double), comm, "refresh_halo_values",
+      [&](std::span<const std::uint32_t> send, std::vector<std::byte>& out) {
+        for (const std::uint32_t i : send) {
+          const auto* bytes = reinterpret_cast<const std::byte*>(&values[owned.begin + i]);
+          out.insert(out.end(), bytes, bytes + sizeof(double));
+        }
+      },
+      [&](std::size_t slot, std::size_t count, const std::byte* source) {
+        if (count) std::memcpy(values.data() + slot, source, count * sizeof(double));
+      });
 }
 
 void remove_halos(Particles& particles, std::vector<std::uint64_t>& keys, const OwnedRange& owned) {

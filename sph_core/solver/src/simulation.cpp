@@ -532,33 +532,33 @@ void Simulation::advance_block(double block) {
   }
 }
 
+void Simulation::exchange_levels() {
+  decomposition_->refresh_halo_values(exchange_values_);
+  held_level_.resize(exchange_values_.size());
+  held_present_.resize(exchange_values_.size());
+  for (std::size_t i = 0; i < exchange_values_.size(); ++i) {
+    held_present_[i] = exchange_values_[i] >= 0.0 ? 1 : 0;
+    held_level_[i] = exchange_values_[i] >= 0.0 ? static_cast<std::uint8_t>(exchange_values_[i]) : 0;
+  }
+}
+
 NeighbourLevels Simulation::levels_with_halos() {
   const auto level = schedule_.levels();
   const auto scheduled = schedule_.scheduled();
   exchange_values_.assign(problem_.particles.size(), -1.0);  // -1: not scheduled
   for (std::size_t k = 0; k < level.size(); ++k)
     if (scheduled[k] != 0) exchange_values_[owned_.begin + k] = level[k];
-  decomposition_->refresh_halo_values(exchange_values_);
-  held_level_.resize(exchange_values_.size());
-  held_scheduled_.resize(exchange_values_.size());
-  for (std::size_t i = 0; i < exchange_values_.size(); ++i) {
-    held_scheduled_[i] = exchange_values_[i] >= 0.0 ? 1 : 0;
-    held_level_[i] = exchange_values_[i] >= 0.0 ? static_cast<std::uint8_t>(exchange_values_[i]) : 0;
-  }
-  return {held_level_, held_scheduled_, owned_.begin};
+  exchange_levels();
+  return {held_level_, held_present_, owned_.begin};
 }
 
 std::span<const std::uint32_t> Simulation::active_with_halos(std::span<const std::uint8_t> level) {
-  const auto active = schedule_.active();
   exchange_values_.assign(problem_.particles.size(), -1.0);  // -1: not active
-  for (const std::uint32_t k : active) exchange_values_[owned_.begin + k] = level[k];
-  decomposition_->refresh_halo_values(exchange_values_);
-  held_level_.resize(exchange_values_.size());
+  for (const std::uint32_t k : schedule_.active()) exchange_values_[owned_.begin + k] = level[k];
+  exchange_levels();
   active_anywhere_.clear();
-  for (std::size_t i = 0; i < exchange_values_.size(); ++i) {
-    held_level_[i] = exchange_values_[i] >= 0.0 ? static_cast<std::uint8_t>(exchange_values_[i]) : 0;
-    if (exchange_values_[i] >= 0.0) active_anywhere_.push_back(static_cast<std::uint32_t>(i));
-  }
+  for (std::size_t i = 0; i < held_present_.size(); ++i)
+    if (held_present_[i] != 0) active_anywhere_.push_back(static_cast<std::uint32_t>(i));
   return active_anywhere_;
 }
 
@@ -713,9 +713,8 @@ void Simulation::step(double target_time) {
   eject();
   const auto mach = [&] {
     auto scope = timers_.measure("diagnostics");
-    std::array<double, 1> negated{-max_mach_number(p.vx, p.vy, p.vz, p.sound_speed, p.flags).value};
-    if (decomposition_ != nullptr) decomposition_->min(negated);  // the largest over the processes
-    return -negated[0];
+    // The largest over the processes.
+    return -least_over_processes(-max_mach_number(p.vx, p.vy, p.vz, p.sound_speed, p.flags).value);
   };
   if (plan.planned() && !late_stage_active_ && time_ >= plan.transition_time) {
     carry_stress_across_switch(switch_to_late_stage());

@@ -38,7 +38,6 @@ class MpiDecomposition final : public Decomposition {
 
  private:
   Communicator comm_;
-  std::array<double, 3> period_{};   // box edge along each periodic axis, 0 for an open one
   std::vector<std::uint64_t> keys_;  // curve key of every held particle (of the last distribute())
   HaloPlan plan_;
   OwnedRange owned_{};

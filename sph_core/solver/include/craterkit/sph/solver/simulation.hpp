@@ -206,6 +206,9 @@ class Simulation {
   // The same over several processes: the schedule of the owned particles, with the halos' levels, the finest
   // level and the next tick agreed between the processes (docs/parallel.md).
   void advance_block_over_processes(double block);
+  // Halos held: exchange_values_ (a level per owned particle, -1 for none) given to the halos by their
+  // owners, into held_level_ and held_present_.
+  void exchange_levels();
   // Halos held: the levels of the owned particles and their halos' (exchanged), for the neighbour rule.
   NeighbourLevels levels_with_halos();
   // Halos held: the particles whose step ends at this tick, owned or halo (list indices), with `level`
@@ -266,7 +269,7 @@ class Simulation {
   std::vector<std::uint32_t> owned_list_;   // owned_ as a selection
   // Distributed block steps: scratch of the exchanges of levels and of the active particles.
   std::vector<double> exchange_values_;
-  std::vector<std::uint8_t> held_level_, held_scheduled_;
+  std::vector<std::uint8_t> held_level_, held_present_;
   std::vector<std::uint32_t> active_anywhere_, shifted_active_;
 };
 
