@@ -55,6 +55,7 @@ nlohmann::json summary_json(const sph::RunSummary& s) {
                         {"processes", s.processes},
                         {"resumed", s.resumed},
                         {"neighbour_rebuilds", s.neighbour_rebuilds},
+                        {"halos_found_anew", s.halos_found_anew},
                         {"phase_seconds", phases},
                         {"snapshots", s.snapshots},
                         {"checkpoint", s.checkpoint},

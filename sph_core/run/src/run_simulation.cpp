@@ -241,6 +241,7 @@ void summarise(const Simulation& sim, RunSummary& summary) {
       gravity[0] == 0.0 && gravity[1] == 0.0 && gravity[2] == 0.0 && !has_fixed && !sim.box().any_mirror();
   summary.bytes_per_particle = sim.bytes_per_particle();
   summary.neighbour_rebuilds = sim.neighbour_rebuilds();
+  summary.halos_found_anew = sim.halos_found_anew();
   const EjectedTotals ejected = sim.ejected_totals();
   summary.ejected_particles = ejected.particles;
   summary.ejected_mass = ejected.mass;

@@ -153,18 +153,16 @@ void Simulation::eject() {
   force_rebuild_ = true;
 }
 
-void Simulation::add_halos() {
+void Simulation::add_halos(double skin) {
   auto& p = problem_.particles;
   auto scope = timers_.measure("halos");
-  // Lists are built afresh every evaluation, so halos within the support suffice; the small skin only keeps
-  // pairs at the edge of the support (equal to round-off) from being missed.
-  constexpr double halo_skin = 1e-6;
   const std::size_t owned_count = p.size();
-  owned_ = decomposition_->add_halos(p, halo_skin, rate_options_.period);
+  owned_ = decomposition_->add_halos(p, skin, rate_options_.period);
   active_ = p.size();
   force_rebuild_ = true;
-  // The per-particle results of the last evaluation that a particle keeps until its next one (block time
-  // steps: an inactive particle's) move with it to the owned range; the halos' entries are filled anew.
+  // The per-particle values a particle keeps from one evaluation or step start to the next (block time
+  // steps: an inactive particle's results, an active one's rates at its step's start) move with it to the
+  // owned range; the halos' entries are filled anew.
   const auto place_owned = [&](auto& values) {
     if (values.size() != owned_count) return;
     values.insert(values.begin(), owned_.begin, typename std::decay_t<decltype(values)>::value_type{});
@@ -173,9 +171,55 @@ void Simulation::add_halos() {
   place_owned(rate_workspace_.neighbour_count);
   place_owned(rate_workspace_.signal_time);
   place_owned(shear_modulus_);
+  integrator_workspace_.for_each_array(place_owned);
   owned_list_.resize(owned_.size());
   for (std::size_t k = 0; k < owned_.size(); ++k)
     owned_list_[k] = static_cast<std::uint32_t>(owned_.begin + k);
+  halo_skin_ = skin;
+  for (auto* anchor : {&halo_anchor_x_, &halo_anchor_y_, &halo_anchor_z_, &halo_anchor_h_})
+    anchor->resize(owned_.size());
+  for (std::size_t k = 0; k < owned_.size(); ++k) {
+    halo_anchor_x_[k] = p.x[owned_.begin + k];
+    halo_anchor_y_[k] = p.y[owned_.begin + k];
+    halo_anchor_z_[k] = p.z[owned_.begin + k];
+    halo_anchor_h_[k] = p.smoothing_length[owned_.begin + k];
+  }
+}
+
+bool Simulation::halos_outgrown() const {
+  // No particle j of another process came within h_i + h_j of an owned i unseen while every particle, here
+  // and there, has |x - X| + max(0, h - H) <= s H since the halos were found at (X, H) with reach
+  // (1 + s)(H_i + H_j): the triangle inequality, as for the search's kept lists (neighbour_search.hpp).
+  const auto& p = problem_.particles;
+  const auto& period = rate_options_.period;
+  const auto minimum_image = [&](double d, int axis) {
+    return period[axis] > 0.0 ? d - period[axis] * std::nearbyint(d / period[axis]) : d;
+  };
+  const auto n = static_cast<std::int64_t>(owned_.size());
+  int outgrown = 0;
+#pragma omp parallel for schedule(static) reduction(max : outgrown)
+  for (std::int64_t kk = 0; kk < n; ++kk) {
+    const auto k = static_cast<std::size_t>(kk);
+    const std::size_t i = owned_.begin + k;
+    const double dx = minimum_image(p.x[i] - halo_anchor_x_[k], 0);
+    const double dy = minimum_image(p.y[i] - halo_anchor_y_[k], 1);
+    const double dz = minimum_image(p.z[i] - halo_anchor_z_[k], 2);
+    const double moved =
+        std::sqrt(dx * dx + dy * dy + dz * dz) + std::max(0.0, p.smoothing_length[i] - halo_anchor_h_[k]);
+    if (moved > halo_skin_ * halo_anchor_h_[k]) outgrown = 1;
+  }
+  return any_process(outgrown != 0);
+}
+
+void Simulation::keep_halos(std::span<const std::string_view> changed_fields) {
+  if (halos_outgrown()) {
+    drop_halos();
+    add_halos(halo_skin_);  // copies of every field
+    ++halo_searches_;
+    return;
+  }
+  auto scope = timers_.measure("halos");
+  decomposition_->refresh_halos(problem_.particles, changed_fields);
 }
 
 void Simulation::take_share_of_the_particles() {
@@ -238,6 +282,7 @@ void Simulation::drop_halos() {
   keep_owned(rate_workspace_.neighbour_count);
   keep_owned(rate_workspace_.signal_time);
   keep_owned(shear_modulus_);
+  integrator_workspace_.for_each_array(keep_owned);
   decomposition_->remove_halos(problem_.particles);
   active_ = problem_.particles.size();
   owned_ = {0, active_};
@@ -256,7 +301,7 @@ Simulation::Simulation(SolverParameters parameters, ProblemSetup problem, Decomp
     // The first force needs the correction matrices of the initial state (later ones come from the rate
     // pass before, gradient_correction.hpp). Distributed: the owners' matrices reach the halos with the
     // particles in the first rate evaluation.
-    if (decomposition_ != nullptr) add_halos();
+    if (decomposition_ != nullptr) add_halos(exact_halo_skin);
     update_neighbours();
     update_equation_of_state();
     const auto owned = decomposition_ != nullptr ? ParticleSelection::listed(owned_list_)
@@ -353,7 +398,7 @@ void Simulation::evaluate_rates() {
   }
   // The halos' own state (equation of state, returns) is evaluated here as their owners evaluate it, from
   // the same values: the rates of the owned particles then read what the serial run reads.
-  add_halos();
+  add_halos(exact_halo_skin);
   update_neighbours();
   evaluate_rates(ParticleSelection::listed(owned_list_), ParticleSelection::all(problem_.particles.size()));
   drop_halos();
@@ -461,11 +506,12 @@ namespace {
 
 }  // namespace
 
-void Simulation::end_substep(const ParticleSelection& active, const TimeStepParameters& parameters) {
+void Simulation::end_substep(const ParticleSelection& active, std::span<const double> step_of_particle,
+                             const TimeStepParameters& parameters) {
   auto& p = problem_.particles;
   {
     auto scope = timers_.measure("integration");
-    correct(p, schedule_.active_steps(), active, integrator_workspace_, rate_workspace_.neighbour_count,
+    correct(p, step_of_particle, active, integrator_workspace_, rate_workspace_.neighbour_count,
             parameters_.smoothing, parameters_.density == DensityMethod::continuity);
     if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention, active);
   }
@@ -515,7 +561,7 @@ void Simulation::advance_block(double block) {
       needed = neighbourhood_of(schedule_.active());
     }
     evaluate_rates(active, needed);
-    end_substep(active, parameters);
+    end_substep(active, schedule_.active_steps(), parameters);
     {
       auto scope = timers_.measure("schedule");
       if (!schedule_.finished()) {
@@ -574,14 +620,19 @@ void Simulation::advance_block_over_processes(double block) {
     drop_halos();
     throw_collapse(c, p, rate_workspace_.signal_time, parameters, time_ + schedule_.elapsed());
   };
+  // The halos of the whole block: found once with their skin, found again only when a particle here or
+  // elsewhere has moved beyond it (halos_outgrown), refreshed in between from their owners. The lists are
+  // kept as in the serial run (keep_neighbours), over the owned particles and the halos, in curve order.
+  add_halos(std::max(parameters_.neighbours.halo_skin, exact_halo_skin));
+  every_field_.clear();
+  p.for_each_field([this](std::string_view name, const auto&) { every_field_.push_back(name); });
   {
     auto scope = timers_.measure("integration");
-    begin_step(p, integrator_workspace_, ParticleSelection::all(p.size()));
+    begin_step(p, integrator_workspace_, ParticleSelection::listed(owned_list_));
   }
+  keep_neighbours();
   // The levels: each process those of its own particles, under the neighbour rule with its halos' levels
   // (exchanged every sweep, so that every sweep reads the sweep before, as the serial one does).
-  add_halos();
-  update_neighbours();
   {
     auto scope = timers_.measure("schedule");
     const PairSupport support = pair_support(p, problem_.box);
@@ -596,7 +647,6 @@ void Simulation::advance_block_over_processes(double block) {
     }
     schedule_.begin_ticks(largest_over_processes(schedule_.finest_scheduled_level()));
   }
-  drop_halos();
   while (!schedule_.finished()) {
     double dt = 0.0;
     {
@@ -606,30 +656,33 @@ void Simulation::advance_block_over_processes(double block) {
     }
     {
       auto scope = timers_.measure("integration");
-      drift(p, dt, problem_.box, parameters_.smoothing);
+      drift(p, dt, problem_.box, parameters_.smoothing);  // the halos too, overwritten by their owners' below
     }
-    // The rates of the active owned particles, with halos at the drifted state. Whose state is refreshed:
-    // the neighbours of an active particle on any process (halos tell which of theirs are active), as in the
-    // serial run, where every neighbour of an active particle is.
-    add_halos();
-    update_neighbours();
+    // The rates of the active owned particles, with the halos at their owners' drifted state. Whose state is
+    // refreshed: the neighbours of an active particle on any process (halos tell which of theirs are active),
+    // as in the serial run, where every neighbour of an active particle is.
+    keep_halos(every_field_);
+    keep_neighbours();
     shifted_active_.clear();
-    for (const std::uint32_t k : schedule_.active())
+    held_steps_.assign(p.size(), 0.0);
+    for (const std::uint32_t k : schedule_.active()) {
       shifted_active_.push_back(static_cast<std::uint32_t>(owned_.begin + k));
+      held_steps_[owned_.begin + k] = schedule_.active_steps()[k];
+    }
+    const auto active = ParticleSelection::listed(shifted_active_);
     ParticleSelection needed = ParticleSelection::all(p.size());
     {
       auto scope = timers_.measure("schedule");
       needed = neighbourhood_of(active_with_halos(schedule_.levels()));
     }
-    evaluate_rates(ParticleSelection::listed(shifted_active_), needed);
-    drop_halos();
-    const auto active = ParticleSelection::listed(schedule_.active());
-    end_substep(active, parameters);
+    evaluate_rates(active, needed);
+    end_substep(active, held_steps_, parameters);
     if (!schedule_.finished()) {
       // New levels at the corrected positions: the neighbour rule with the halos' levels, the finest level
       // agreed, and waking by the particles whose step just ended, here and on the other processes.
-      add_halos();
-      update_neighbours();
+      constexpr std::array<std::string_view, 4> placed{"x", "y", "z", "smoothing_length"};
+      keep_halos(placed);
+      keep_neighbours();
       auto scope = timers_.measure("schedule");
       const PairSupport support = pair_support(p, problem_.box);
       const auto owned_steps = std::span<const double>(p.time_step).subspan(owned_.begin, owned_.size());
@@ -642,12 +695,15 @@ void Simulation::advance_block_over_processes(double block) {
       schedule_.apply_levels(largest_over_processes(std::max(highest, schedule_.finest_level())));
       schedule_.wake(active_with_halos(schedule_.levels()), held_level_, lists_, &support, owned_.begin);
       scope.stop();
-      drop_halos();
       auto integration = timers_.measure("integration");
-      begin_step(p, integrator_workspace_, active);
+      shifted_active_.clear();  // the halos may have been found anew
+      for (const std::uint32_t k : schedule_.active())
+        shifted_active_.push_back(static_cast<std::uint32_t>(owned_.begin + k));
+      begin_step(p, integrator_workspace_, ParticleSelection::listed(shifted_active_));
     }
     if (between_substeps_) between_substeps_();
   }
+  drop_halos();
 }
 
 void Simulation::step(double target_time) {
@@ -666,7 +722,9 @@ void Simulation::step(double target_time) {
 
   if (next_step_sorts() && decomposition_ != nullptr) {
     auto scope = timers_.measure("sort");
-    // The re-split balances the pair work of the last evaluation (neighbours + 1 per particle).
+    // The re-split balances the pair work of the last evaluation (neighbours + 1 per particle). Weighting
+    // it with each particle's evaluations per block (block time steps) was measured slower on the SCI example
+    // (docs/parallel.md).
     std::vector<double> work(p.size(), 1.0);
     for (std::size_t i = 0; i < std::min(work.size(), rate_workspace_.neighbour_count.size()); ++i)
       work[i] += rate_workspace_.neighbour_count[i];

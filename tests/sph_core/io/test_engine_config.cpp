@@ -85,6 +85,10 @@ TEST(StandardProblemConfig, OutOfRangeAndWrongTypesAreNamed) {
   EXPECT_NE(error_of(minimal + "[output]\nsnapshot_times = [0.1, 0.05]\n").find("output.snapshot_times"),
             std::string::npos);
   EXPECT_NE(error_of(minimal + "[run]\n").find("TOML"), std::string::npos);  // duplicate table
+  EXPECT_NE(error_of(minimal + "[neighbours]\nhalo_skin = -0.1\n").find("neighbours.halo_skin"),
+            std::string::npos);
+  EXPECT_DOUBLE_EQ(parse(minimal + "[neighbours]\nhalo_skin = 0.3\n").simulation.solver.neighbours.halo_skin,
+                   0.3);
 }
 
 // The artificial stress: epsilon in [0, 1], off by default; a problem without a solid material refuses it

@@ -54,6 +54,15 @@ struct IntegratorWorkspace {
       viscosity_alpha_rate, stress_rate_xx, stress_rate_xy, stress_rate_xz, stress_rate_yy, stress_rate_yz,
       total_strain_rate, distention_rate;
   std::vector<double> distention;  // alpha_d^n (solid group only): the corrected alpha_d never exceeds it
+
+  // Every array (one entry per particle or none), for code that moves the particles' entries.
+  template <class Visit>
+  void for_each_array(Visit&& visit) {
+    for (auto* values : {&acceleration_x, &acceleration_y, &acceleration_z, &density_rate, &energy_rate,
+                         &viscosity_alpha_rate, &stress_rate_xx, &stress_rate_xy, &stress_rate_xz,
+                         &stress_rate_yy, &stress_rate_yz, &total_strain_rate, &distention_rate, &distention})
+      visit(*values);
+  }
 };
 
 // Kick, drift (positions wrapped into the box on periodic axes) and predicted state:

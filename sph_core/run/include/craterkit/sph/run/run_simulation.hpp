@@ -74,6 +74,7 @@ struct RunSummary {
   bool resumed = false;
   bool ended_by_observer = false;  // an observer ended the run (else end_time or max_steps)
   std::uint64_t neighbour_rebuilds = 0;
+  std::uint64_t halos_found_anew = 0;  // distributed block steps, process 0 (Simulation::halos_found_anew)
   std::vector<std::pair<std::string, double>> phase_seconds;
   std::vector<std::string> snapshots;  // files written by this invocation
   std::string checkpoint;              // the last checkpoint written ("" if none)

@@ -136,6 +136,9 @@ class Simulation {
   // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
   [[nodiscard]] double bytes_per_particle() const;
   [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
+  // Distributed block time steps: how often this process's halos were found anew within a block because a
+  // particle had moved beyond their skin (they are found once per block otherwise; docs/parallel.md).
+  [[nodiscard]] std::uint64_t halos_found_anew() const { return halo_searches_; }
   // Particle updates (one per particle and rate evaluation of its own step) since construction: particles
   // x steps with a global step, the sum over substeps of the particles whose step ended with block steps.
   [[nodiscard]] std::uint64_t particle_updates() const { return particle_updates_; }
@@ -202,7 +205,9 @@ class Simulation {
   void update_equation_of_state(const ParticleSelection& selection);
   void advance_block(double block);  // block time steps (block_time_steps.hpp) over one block
   // Block time steps, after the rates of the active particles: their correction, state and own next step.
-  void end_substep(const ParticleSelection& active, const TimeStepParameters& parameters);
+  // step_of_particle: per particle index, the step of an active particle that ends here.
+  void end_substep(const ParticleSelection& active, std::span<const double> step_of_particle,
+                   const TimeStepParameters& parameters);
   // The same over several processes: the schedule of the owned particles, with the halos' levels, the finest
   // level and the next tick agreed between the processes (docs/parallel.md).
   void advance_block_over_processes(double block);
@@ -227,10 +232,18 @@ class Simulation {
   void eject();  // flags, records and moves ejecta behind the active particles
   void carry_stress_across_switch(const std::vector<double>& stress_factor);
   void cap_elastic_shear_strain();
-  // Distributed runs: the halos around the owned particles for one rate evaluation, and their removal (the
-  // per-particle scratch the correction reads follows the owned particles back to 0 .. n-1).
-  void add_halos();
+  // Distributed runs: the halos around the owned particles, found with the reach (1 + skin)(h_i + h_j), and
+  // their removal (the per-particle values kept between evaluations follow the owned particles).
+  // exact_halo_skin: for lists built afresh at once (it only keeps pairs at the edge of the support, equal to
+  // round-off, from being missed).
+  static constexpr double exact_halo_skin = 1e-6;
+  void add_halos(double skin);
   void drop_halos();
+  // Halos held: whether a particle on any process has moved beyond the skin since the halos were found, so
+  // that a pair within the support may be missing. Collective.
+  [[nodiscard]] bool halos_outgrown() const;
+  // Halos held: they take their owners' values of the fields that changed, or are found anew when outgrown.
+  void keep_halos(std::span<const std::string_view> changed_fields);
   void take_share_of_the_particles();  // distributed: this process's piece of the whole set
 
   SolverParameters parameters_;
@@ -271,6 +284,12 @@ class Simulation {
   std::vector<double> exchange_values_;
   std::vector<std::uint8_t> held_level_, held_present_;
   std::vector<std::uint32_t> active_anywhere_, shifted_active_;
+  std::vector<double> held_steps_;  // per held particle: the step of an active owned one
+  std::vector<std::string_view> every_field_;
+  // The skin the halos were found with, and each owned particle's position and h then (halos_outgrown).
+  double halo_skin_ = 0.0;
+  std::vector<double> halo_anchor_x_, halo_anchor_y_, halo_anchor_z_, halo_anchor_h_;
+  std::uint64_t halo_searches_ = 0;  // halos found anew within a block (outgrown)
 };
 
 }  // namespace craterkit::sph
