@@ -40,11 +40,14 @@ void MpiDecomposition::distribute(Particles& particles, std::span<const double> 
   owned_ = {0, held_};
 }
 
-OwnedRange MpiDecomposition::add_halos(Particles& particles, double skin,
+OwnedRange MpiDecomposition::add_halos(Particles& particles, std::span<const double> reach,
                                        const std::array<double, 3>& period) {
   if (owned_.size() != particles.size() || owned_.begin != 0 || keys_.size() != particles.size())
     throw std::logic_error("MpiDecomposition::add_halos: halos already held, or distribute() not called");
-  plan_ = find_halos(particles.x, particles.y, particles.z, particles.smoothing_length, skin, period, comm_);
+  if (reach.size() != particles.size())
+    throw std::invalid_argument("MpiDecomposition::add_halos: one reach per particle expected");
+  plan_ = find_halos(particles.x, particles.y, particles.z, reach, 0.0, period,
+                     comm_);  // |x_i - x_j| < r_i + r_j
   owned_ = insert_halos(particles, keys_, plan_, comm_);
   held_ = particles.size();
   return owned_;

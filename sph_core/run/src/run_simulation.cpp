@@ -122,7 +122,8 @@ void check_resumed_configuration(const std::filesystem::path& path, const RunAtt
     throw InputError("--resume: the configuration differs from the one of checkpoint " + path.string() +
                      " in " + key + ": " + here + " now, " + there +
                      " in the checkpoint; a resumed run may change only run.end_time, run.max_steps, "
-                     "problem.name and [output]. Resume with the checkpoint's configuration, or start the "
+                     "problem.name, [output] and neighbours.halo_skin. Resume with the checkpoint's "
+                     "configuration, or start the "
                      "changed run in another --out folder");
   };
   for (const auto& [key, value] : now) {
@@ -257,7 +258,7 @@ void summarise(const Simulation& sim, RunSummary& summary) {
 
 bool resumable_configuration_key(const std::string& key) {
   return key == "run.end_time" || key == "run.max_steps" || key == "problem.name" ||
-         key.rfind("output.", 0) == 0;
+         key == "neighbours.halo_skin" || key.rfind("output.", 0) == 0;
 }
 
 RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,

@@ -153,11 +153,23 @@ void Simulation::eject() {
   force_rebuild_ = true;
 }
 
-void Simulation::add_halos(double skin) {
+void Simulation::add_halos(double skin, double lookahead) {
   auto& p = problem_.particles;
   auto scope = timers_.measure("halos");
   const std::size_t owned_count = p.size();
-  owned_ = decomposition_->add_halos(p, skin, rate_options_.period);
+  // Each particle's allowed motion: the skin, plus how far it goes in `lookahead` at its present velocity
+  // and acceleration (the fast particles, few, would otherwise outgrow a skin of their h at once).
+  halo_margin_.resize(owned_count);
+  halo_reach_.resize(owned_count);
+  for (std::size_t i = 0; i < owned_count; ++i) {
+    const double speed = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+    const double acceleration =
+        std::sqrt(p.acceleration_x[i] * p.acceleration_x[i] + p.acceleration_y[i] * p.acceleration_y[i] +
+                  p.acceleration_z[i] * p.acceleration_z[i]);
+    halo_margin_[i] = skin * p.smoothing_length[i] + lookahead * (speed + 0.5 * lookahead * acceleration);
+    halo_reach_[i] = p.smoothing_length[i] + halo_margin_[i];
+  }
+  owned_ = decomposition_->add_halos(p, halo_reach_, rate_options_.period);
   active_ = p.size();
   force_rebuild_ = true;
   // The per-particle values a particle keeps from one evaluation or step start to the next (block time
@@ -176,6 +188,7 @@ void Simulation::add_halos(double skin) {
   for (std::size_t k = 0; k < owned_.size(); ++k)
     owned_list_[k] = static_cast<std::uint32_t>(owned_.begin + k);
   halo_skin_ = skin;
+  halo_lookahead_ = lookahead;
   for (auto* anchor : {&halo_anchor_x_, &halo_anchor_y_, &halo_anchor_z_, &halo_anchor_h_})
     anchor->resize(owned_.size());
   for (std::size_t k = 0; k < owned_.size(); ++k) {
@@ -188,8 +201,9 @@ void Simulation::add_halos(double skin) {
 
 bool Simulation::halos_outgrown() const {
   // No particle j of another process came within h_i + h_j of an owned i unseen while every particle, here
-  // and there, has |x - X| + max(0, h - H) <= s H since the halos were found at (X, H) with reach
-  // (1 + s)(H_i + H_j): the triangle inequality, as for the search's kept lists (neighbour_search.hpp).
+  // and there, has |x - X| + max(0, h - H) <= m since the halos were found at (X, H) with the reach
+  // (H_i + m_i) + (H_j + m_j): the triangle inequality, as for the search's kept lists
+  // (neighbour_search.hpp).
   const auto& p = problem_.particles;
   const auto& period = rate_options_.period;
   const auto minimum_image = [&](double d, int axis) {
@@ -206,7 +220,7 @@ bool Simulation::halos_outgrown() const {
     const double dz = minimum_image(p.z[i] - halo_anchor_z_[k], 2);
     const double moved =
         std::sqrt(dx * dx + dy * dy + dz * dz) + std::max(0.0, p.smoothing_length[i] - halo_anchor_h_[k]);
-    if (moved > halo_skin_ * halo_anchor_h_[k]) outgrown = 1;
+    if (moved > halo_margin_[k]) outgrown = 1;
   }
   return any_process(outgrown != 0);
 }
@@ -214,7 +228,7 @@ bool Simulation::halos_outgrown() const {
 void Simulation::keep_halos(std::span<const std::string_view> changed_fields) {
   if (halos_outgrown()) {
     drop_halos();
-    add_halos(halo_skin_);  // copies of every field
+    add_halos(halo_skin_, halo_lookahead_);  // copies of every field
     ++halo_searches_;
     return;
   }
@@ -301,7 +315,7 @@ Simulation::Simulation(SolverParameters parameters, ProblemSetup problem, Decomp
     // The first force needs the correction matrices of the initial state (later ones come from the rate
     // pass before, gradient_correction.hpp). Distributed: the owners' matrices reach the halos with the
     // particles in the first rate evaluation.
-    if (decomposition_ != nullptr) add_halos(exact_halo_skin);
+    if (decomposition_ != nullptr) add_halos(exact_halo_skin, 0.0);
     update_neighbours();
     update_equation_of_state();
     const auto owned = decomposition_ != nullptr ? ParticleSelection::listed(owned_list_)
@@ -398,7 +412,7 @@ void Simulation::evaluate_rates() {
   }
   // The halos' own state (equation of state, returns) is evaluated here as their owners evaluate it, from
   // the same values: the rates of the owned particles then read what the serial run reads.
-  add_halos(exact_halo_skin);
+  add_halos(exact_halo_skin, 0.0);
   update_neighbours();
   evaluate_rates(ParticleSelection::listed(owned_list_), ParticleSelection::all(problem_.particles.size()));
   drop_halos();
@@ -623,7 +637,7 @@ void Simulation::advance_block_over_processes(double block) {
   // The halos of the whole block: found once with their skin, found again only when a particle here or
   // elsewhere has moved beyond it (halos_outgrown), refreshed in between from their owners. The lists are
   // kept as in the serial run (keep_neighbours), over the owned particles and the halos, in curve order.
-  add_halos(std::max(parameters_.neighbours.halo_skin, exact_halo_skin));
+  add_halos(std::max(parameters_.neighbours.halo_skin, exact_halo_skin), block);
   every_field_.clear();
   p.for_each_field([this](std::string_view name, const auto&) { every_field_.push_back(name); });
   {

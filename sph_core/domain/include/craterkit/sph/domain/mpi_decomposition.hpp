@@ -21,7 +21,8 @@ class MpiDecomposition final : public Decomposition {
   // Every size()-th particle, from the rank()-th.
   void take_share(Particles& particles) override;
   void distribute(Particles& particles, std::span<const double> work) override;
-  OwnedRange add_halos(Particles& particles, double skin, const std::array<double, 3>& period) override;
+  OwnedRange add_halos(Particles& particles, std::span<const double> reach,
+                       const std::array<double, 3>& period) override;
   void refresh_halos(Particles& particles, std::span<const std::string_view> fields) override;
   void refresh_halo_values(std::span<double> values) override;
   void remove_halos(Particles& particles) override;

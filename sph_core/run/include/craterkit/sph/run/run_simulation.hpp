@@ -47,7 +47,8 @@ struct RunOptions {
   std::function<void(std::uint64_t step)> after_checkpoint;
 };
 
-// Keys a resumed run may change: run.end_time, run.max_steps, problem.name and [output].
+// Keys a resumed run may change: run.end_time, run.max_steps, problem.name, [output] and
+// neighbours.halo_skin (which halos a process holds, not what it computes).
 bool resumable_configuration_key(const std::string& key);
 
 struct RunSummary {

@@ -30,10 +30,11 @@ class Decomposition {
   virtual void distribute(Particles& particles, std::span<const double> work) = 0;
 
   // Adds copies (every field) of the particles of other processes within reach of this process's particles:
-  // every j with |x_i - x_j| < (1 + skin)(h_i + h_j) for an owned i, mirror images included, minimum images
-  // along periodic axes (period: the box edge along each, 0 for an open axis). Returns where the owned
-  // particles are now.
-  virtual OwnedRange add_halos(Particles& particles, double skin, const std::array<double, 3>& period) = 0;
+  // every j with |x_i - x_j| < reach_i + reach_j for an owned i (reach: one length per particle, m, at least
+  // its h; (1 + skin) h for a relative skin), mirror images included, minimum images along periodic axes
+  // (period: the box edge along each, 0 for an open axis). Returns where the owned particles are now.
+  virtual OwnedRange add_halos(Particles& particles, std::span<const double> reach,
+                               const std::array<double, 3>& period) = 0;
   // The halo copies take their owners' current values of the named fields (Particles::for_each_field names).
   virtual void refresh_halos(Particles& particles, std::span<const std::string_view> fields) = 0;
   // The same for values that are no particle field (one per owned and halo particle, as add_halos() left

@@ -232,12 +232,13 @@ class Simulation {
   void eject();  // flags, records and moves ejecta behind the active particles
   void carry_stress_across_switch(const std::vector<double>& stress_factor);
   void cap_elastic_shear_strain();
-  // Distributed runs: the halos around the owned particles, found with the reach (1 + skin)(h_i + h_j), and
-  // their removal (the per-particle values kept between evaluations follow the owned particles).
-  // exact_halo_skin: for lists built afresh at once (it only keeps pairs at the edge of the support, equal to
-  // round-off, from being missed).
+  // Distributed runs: the halos around the owned particles, and their removal (the per-particle values kept
+  // between evaluations follow the owned particles). Found with the reach r_i + r_j, r = h + m, where the
+  // margin m = skin h + (|v| + |a| lookahead / 2) lookahead is the motion each particle may make before they
+  // are found anew (halos_outgrown). exact_halo_skin: for lists built afresh at once (it only keeps pairs at
+  // the edge of the support, equal to round-off, from being missed).
   static constexpr double exact_halo_skin = 1e-6;
-  void add_halos(double skin);
+  void add_halos(double skin, double lookahead);
   void drop_halos();
   // Halos held: whether a particle on any process has moved beyond the skin since the halos were found, so
   // that a pair within the support may be missing. Collective.
@@ -286,8 +287,10 @@ class Simulation {
   std::vector<std::uint32_t> active_anywhere_, shifted_active_;
   std::vector<double> held_steps_;  // per held particle: the step of an active owned one
   std::vector<std::string_view> every_field_;
-  // The skin the halos were found with, and each owned particle's position and h then (halos_outgrown).
-  double halo_skin_ = 0.0;
+  // How the halos were found (add_halos), each owned particle's margin and reach then, and its position and
+  // h then (halos_outgrown).
+  double halo_skin_ = 0.0, halo_lookahead_ = 0.0;
+  std::vector<double> halo_margin_, halo_reach_;
   std::vector<double> halo_anchor_x_, halo_anchor_y_, halo_anchor_z_, halo_anchor_h_;
   std::uint64_t halo_searches_ = 0;  // halos found anew within a block (outgrown)
 };
