@@ -46,8 +46,8 @@ OwnedRange MpiDecomposition::add_halos(Particles& particles, std::span<const dou
     throw std::logic_error("MpiDecomposition::add_halos: halos already held, or distribute() not called");
   if (reach.size() != particles.size())
     throw std::invalid_argument("MpiDecomposition::add_halos: one reach per particle expected");
-  plan_ = find_halos(particles.x, particles.y, particles.z, reach, 0.0, period,
-                     comm_);  // |x_i - x_j| < r_i + r_j
+  // With the reach as the length and no skin, find_halos' criterion is |x_i - x_j| < r_i + r_j.
+  plan_ = find_halos(particles.x, particles.y, particles.z, reach, 0.0, period, comm_);
   owned_ = insert_halos(particles, keys_, plan_, comm_);
   held_ = particles.size();
   return owned_;

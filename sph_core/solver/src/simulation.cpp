@@ -229,7 +229,7 @@ void Simulation::keep_halos(std::span<const std::string_view> changed_fields) {
   if (halos_outgrown()) {
     drop_halos();
     add_halos(halo_skin_, halo_lookahead_);  // copies of every field
-    ++halo_searches_;
+    ++halos_found_anew_;
     return;
   }
   auto scope = timers_.measure("halos");

@@ -241,15 +241,15 @@ TEST(DistributedSimulation, SedovWithBlockTimeStepsFollowsTheSerialRun) {
   expect_serial(config, 6);  // blocks of up to 2^3 substeps and more; one re-split
 }
 
-// The halos of a block are found once with their skin and found anew when a particle has moved beyond it.
-// With a skin of 0.2 % of h the blast's particles outgrow it within most blocks: the halos are found anew in
-// the middle of blocks (the rates of the step's start, kept for the correction, move with the particles)
-// and the run still follows the serial one.
+// The halos of a block are found once, each particle with a margin for its motion, and found anew when a
+// particle has moved beyond it. With no skin the margin is the motion over the block alone, which the blast's
+// particles outgrow (their h grows): the halos are found anew in the middle of blocks (the rates of the
+// step's start, kept for the correction, move with the particles) and the run still follows the serial one.
 TEST(DistributedSimulation, SedovWithBlockTimeStepsFindsItsHalosAnewWhenOutgrown) {
   StandardProblemConfig config = sedov_config();
   config.simulation.solver.density = DensityMethod::continuity;
   config.simulation.solver.time_step.block_levels = 3;
-  config.simulation.solver.neighbours.halo_skin = 0.002;
+  config.simulation.solver.neighbours.halo_skin = 0.0;
   const std::uint64_t found_anew = expect_serial(config, 6);
   std::printf("[rank %d] halos found anew %llu times in 6 blocks\n", Communicator::world().rank(),
               static_cast<unsigned long long>(found_anew));

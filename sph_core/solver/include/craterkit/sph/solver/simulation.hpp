@@ -136,9 +136,9 @@ class Simulation {
   // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
   [[nodiscard]] double bytes_per_particle() const;
   [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
-  // Distributed block time steps: how often this process's halos were found anew within a block because a
-  // particle had moved beyond their skin (they are found once per block otherwise; docs/parallel.md).
-  [[nodiscard]] std::uint64_t halos_found_anew() const { return halo_searches_; }
+  // Distributed block time steps: how often the halos were found anew within a block because a particle had
+  // moved beyond its margin (they are found once per block otherwise; docs/parallel.md).
+  [[nodiscard]] std::uint64_t halos_found_anew() const { return halos_found_anew_; }
   // Particle updates (one per particle and rate evaluation of its own step) since construction: particles
   // x steps with a global step, the sum over substeps of the particles whose step ended with block steps.
   [[nodiscard]] std::uint64_t particle_updates() const { return particle_updates_; }
@@ -240,7 +240,7 @@ class Simulation {
   static constexpr double exact_halo_skin = 1e-6;
   void add_halos(double skin, double lookahead);
   void drop_halos();
-  // Halos held: whether a particle on any process has moved beyond the skin since the halos were found, so
+  // Halos held: whether a particle on any process has moved beyond its margin since the halos were found, so
   // that a pair within the support may be missing. Collective.
   [[nodiscard]] bool halos_outgrown() const;
   // Halos held: they take their owners' values of the fields that changed, or are found anew when outgrown.
@@ -292,7 +292,7 @@ class Simulation {
   double halo_skin_ = 0.0, halo_lookahead_ = 0.0;
   std::vector<double> halo_margin_, halo_reach_;
   std::vector<double> halo_anchor_x_, halo_anchor_y_, halo_anchor_z_, halo_anchor_h_;
-  std::uint64_t halo_searches_ = 0;  // halos found anew within a block (outgrown)
+  std::uint64_t halos_found_anew_ = 0;  // halos found anew within a block (outgrown)
 };
 
 }  // namespace craterkit::sph

@@ -18,10 +18,9 @@ namespace craterkit::sph {
 struct NeighbourParameters {
   NeighbourSearchOptions search{};
   std::uint64_t sort_interval = 20;  // steps between space-filling-curve sorts (0: never)
-  // Distributed block time steps: the halos of a block are the particles of other processes within
-  // (1 + halo_skin)(h_i + h_j), found again within the block only when a particle moved beyond that skin. 0.5
-  // measured fastest on the SCI example over 2 processes (0.1: the halos found anew 4 times per block in the
-  // shock stage; docs/parallel.md).
+  // Distributed block time steps: each particle's margin for the halos a block keeps is halo_skin h plus its
+  // motion over the block (Simulation::add_halos); they are found again within the block only when a particle
+  // moved beyond its margin. Changes no result. docs/parallel.md, "Halos kept through a block".
   double halo_skin = 0.5;
 };
 
