@@ -253,7 +253,9 @@ TEST(DistributedSimulation, SedovWithBlockTimeStepsFindsItsHalosAnewWhenOutgrown
   const std::uint64_t found_anew = expect_serial(config, 6);
   std::printf("[rank %d] halos found anew %llu times in 6 blocks\n", Communicator::world().rank(),
               static_cast<unsigned long long>(found_anew));
-  if (Communicator::world().size() > 1) EXPECT_GT(found_anew, 0u);
+  if (Communicator::world().size() > 1) {
+    EXPECT_GT(found_anew, 0u);
+  }
 }
 
 TEST(DistributedSimulation, ElasticBlockWithMirrorsAndGravityFollowsTheSerialRun) {
