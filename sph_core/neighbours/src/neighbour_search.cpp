@@ -80,7 +80,7 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       candidate_offsets_.capacity() * sizeof(std::uint64_t) +
       image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity() +
       image_rank_.capacity() * sizeof(std::uint32_t) + slot_end_.capacity() * sizeof(std::uint64_t) +
-      moved_.capacity() + moved_list_.capacity() * sizeof(std::uint32_t) +
+      removed_.capacity() + moved_.capacity() + moved_list_.capacity() * sizeof(std::uint32_t) +
       moved_anchor_.capacity() * sizeof(moved_anchor_[0]) +
       fresh_offsets_.capacity() * sizeof(std::uint64_t) + fresh_.capacity() * sizeof(std::uint32_t);
   for (const auto& t : scratch_)
@@ -116,8 +116,9 @@ void NeighbourSearch::release_workspace() {
   release(fresh_);
 }
 
-void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
+void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box, bool kept_lists) {
   const std::size_t n = in.x.size();
+  removed_.clear();
   if (in.y.size() != n || in.z.size() != n || in.smoothing_length.size() != n) {
     throw std::invalid_argument("neighbour search: x, y, z and smoothing_length must have the same length");
   }
@@ -172,8 +173,20 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
                                   ") must exceed 2 (1 + skin) (h_i + h_j) = " + std::to_string(2.0 * reach));
     }
   }
+  // Kept lists (update()) let h grow by the skin before a restructure: the images are made for that h, and
+  // find_moved restructures only beyond it (periodic boxes too small for it keep h_max). Their image bands
+  // are also widened by a margin (add_mirror_images).
   build_h_max_ = h_max;
-  if (box.any_mirror()) add_mirror_images(in, box, h_max);  // appended after the n particles
+  double image_margin = 0.0;
+  if (kept_lists) {
+    const double grown = h_max * (1.0 + options_.skin);
+    bool fits = true;
+    for (int a = 0; a < 3; ++a)
+      fits = fits && (!box.periodic[a] || box.edge(a) > 4.0 * grown * (1.0 + options_.skin));
+    if (fits) build_h_max_ = grown;
+    image_margin = options_.skin * build_h_max_;
+  }
+  if (box.any_mirror()) add_mirror_images(in, box, build_h_max_, image_margin);  // after the n particles
   const std::size_t entries = xs_.size();
   const std::size_t slack = (entries - n) / 4;  // 0 without mirrors
   resize_buffer(hs_, entries, slack);
@@ -204,14 +217,17 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box) {
 
 // Which particles get images: i within reach of the plane of mirrored axis a, i.e. x_a - L_a <
 // (1 + s)(h_i + h_max) + beyond_a, where beyond_a >= 0 is how far the deepest particle has crossed that
-// plane (normally 0: particles stay on their side). Exact: for j not imaged along a and any particle i,
+// plane (normally 0: particles stay on their side; for kept lists the deepest crossing plus the margin, and
+// the band is wider by the margin still, so that find_moved's test of the same form has room on both
+// sides). Exact: for j not imaged along a and any particle i,
 // the image distance along a is |(x_i - L) + (x_j - L)| >= -beyond_a + (1 + s)(h_j + h_max) + beyond_a
 // >= (1 + s)(h_i + h_j), so the pair (i, image of j) is not within reach; a corner image needs both of
 // its axes within reach. The band is widened by a relative 1e-12 so that the rounding of 2 L - x_j
 // cannot drop a pair at the very edge of the reach. Each particle gets one image per nonempty subset of
 // its near axes (x, y and the corner xy for a quarter domain), written after the n particles in index
 // order (deterministic).
-void NeighbourSearch::add_mirror_images(const NeighbourInput& in, const Box& box, double h_max) {
+void NeighbourSearch::add_mirror_images(const NeighbourInput& in, const Box& box, double h_max,
+                                        double margin) {
   const std::size_t n = particles_;
   const double grow = 1.0 + options_.skin;
   const std::array<bool, 3> mirror = box.mirror;
@@ -223,6 +239,13 @@ void NeighbourSearch::add_mirror_images(const NeighbourInput& in, const Box& box
     if (mirror[1]) beyond_y = std::max(beyond_y, plane[1] - ys_[i]);
     if (mirror[2]) beyond_z = std::max(beyond_z, plane[2] - zs_[i]);
   }
+  // Kept lists (update()) widen both bands by a margin, so that a particle creeping across a plane, or
+  // towards it, is not at once beyond what find_moved allows: the crossing allowed grows by the margin, and
+  // particles up to a margin beyond the band find_moved requires get images too. The lists are unchanged
+  // (they hold the pairs within reach), only more images sit in the tree.
+  if (mirror[0]) beyond_x += margin;
+  if (mirror[1]) beyond_y += margin;
+  if (mirror[2]) beyond_z += margin;
   beyond_ = {beyond_x, beyond_y, beyond_z};
   near_planes_.resize(n);
   image_start_.resize(n + 1);
@@ -231,9 +254,9 @@ void NeighbourSearch::add_mirror_images(const NeighbourInput& in, const Box& box
   for (std::size_t i = 0; i < n; ++i) {
     const double reach = grow * (in.smoothing_length[i] + h_max) * (1.0 + 1e-12);
     unsigned near = 0;
-    if (mirror[0] && xs_[i] - plane[0] < reach + beyond_x) near |= 1u;
-    if (mirror[1] && ys_[i] - plane[1] < reach + beyond_y) near |= 2u;
-    if (mirror[2] && zs_[i] - plane[2] < reach + beyond_z) near |= 4u;
+    if (mirror[0] && xs_[i] - plane[0] < reach + beyond_x + margin) near |= 1u;
+    if (mirror[1] && ys_[i] - plane[1] < reach + beyond_y + margin) near |= 2u;
+    if (mirror[2] && zs_[i] - plane[2] < reach + beyond_z + margin) near |= 4u;
     near_planes_[i] = static_cast<std::uint8_t>(near);
     image_start_[i + 1] = (1u << std::popcount(near)) - 1;  // nonempty subsets of `near`
   }
@@ -652,7 +675,7 @@ void NeighbourSearch::join_regions(std::size_t threads, bool overflowed, Neighbo
 
 void NeighbourSearch::build(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {
   built_ = false;
-  sort_particles(input, box);
+  sort_particles(input, box, false);
   make_octree();
   kept_ = false;
   const double grow = 1.0 + options_.skin;
@@ -673,7 +696,7 @@ void NeighbourSearch::build(const NeighbourInput& input, const Box& box, Neighbo
 void NeighbourSearch::restructure(const NeighbourInput& input, const Box& box, NeighbourLists& lists) {
   built_ = false;
   kept_ = false;
-  sort_particles(input, box);
+  sort_particles(input, box, true);
   make_octree();
   const double grow = 1.0 + options_.skin;
   lists.ends.clear();
@@ -890,7 +913,10 @@ void NeighbourSearch::search_anchor(std::uint32_t i, const Box& box, std::vector
           dz = dz > half[2] ? dz - edge[2] : (dz < -half[2] ? dz + edge[2] : dz);
         }
         const double reach = grow * (hi + hs_[k]);
-        if (reach * reach - (dx * dx + dy * dy + dz * dz) > 0 && k != self) out.push_back(original_[k]);
+        if (reach * reach - (dx * dx + dy * dy + dz * dz) > 0 && k != self &&
+            (removed_.empty() || removed_[k] == 0)) {
+          out.push_back(original_[k]);
+        }
       }
     }
     ++at;
@@ -1014,9 +1040,80 @@ void NeighbourSearch::update(const NeighbourInput& input, const Box& box, Neighb
   write_moved_lists(lists);
 }
 
+bool NeighbourSearch::remove_particles(std::span<const std::uint32_t> order, std::size_t kept,
+                                       NeighbourLists& lists) {
+  const std::size_t n = particles_;
+  if (!kept_ || !built_ || kept > n || order.size() < n || lists.particle_count() != n ||
+      lists.ends.size() != n) {
+    return false;
+  }
+  for (std::size_t k = 0; k < kept; ++k) {
+    if (order[k] >= n || (k > 0 && order[k] <= order[k - 1])) return false;
+  }
+  constexpr std::uint32_t gone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> new_index(n, gone);  // once per ejection, not per substep
+  for (std::size_t k = 0; k < kept; ++k) new_index[order[k]] = std::uint32_t(k);
+  // The stayers' lists without the leavers, renumbered in place (order kept: the map is increasing).
+  std::uint32_t* entries = lists.neighbours.data();
+  const auto count = static_cast<std::int64_t>(kept);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t kk = 0; kk < count; ++kk) {
+    const std::size_t i = order[std::size_t(kk)];
+    std::uint32_t* out = entries + lists.offsets[i];
+    for (std::uint64_t e = lists.offsets[i]; e < lists.ends[i]; ++e) {
+      const std::uint32_t j = new_index[neighbour_index(entries[e])];
+      if (j != gone) *out++ = neighbour_entry(j, mirror_bits(entries[e]));
+    }
+    lists.ends[i] = std::uint64_t(out - entries);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (new_index[i] == gone) unused_ += slot_end_[i] - lists.offsets[i];
+  }
+  // Per-particle state moved down to the new indices (order[k] >= k: a forward pass reads nothing it wrote).
+  const bool mirrored = box_.any_mirror();
+  std::uint32_t images = 0;
+  for (std::size_t k = 0; k < kept; ++k) {
+    const std::size_t i = order[k];
+    lists.offsets[k] = lists.offsets[i];
+    lists.ends[k] = lists.ends[i];
+    slot_end_[k] = slot_end_[i];
+    rank_[k] = rank_[i];
+    if (mirrored) {
+      near_planes_[k] = near_planes_[i];
+      const std::uint32_t first = image_start_[i], last = image_start_[i + 1];
+      image_start_[k] = images;
+      for (std::uint32_t e = first; e < last; ++e) image_rank_[images++] = image_rank_[e];
+    }
+  }
+  lists.offsets.resize(kept + 1);
+  lists.offsets[kept] = lists.neighbours.size();
+  lists.ends.resize(kept);
+  slot_end_.resize(kept);
+  rank_.resize(kept);
+  if (mirrored) {
+    near_planes_.resize(kept);
+    image_start_.resize(kept + 1);
+    image_start_[kept] = images;
+    image_rank_.resize(images);
+  }
+  // The sorted entries (particles and images): renumbered, or marked as left.
+  if (removed_.empty()) removed_.assign(original_.size(), 0);
+  for (std::size_t k = 0; k < original_.size(); ++k) {
+    if (removed_[k] != 0) continue;
+    const std::uint32_t j = new_index[neighbour_index(original_[k])];
+    if (j == gone) {
+      removed_[k] = 1;
+    } else {
+      original_[k] = neighbour_entry(j, mirror_bits(original_[k]));
+    }
+  }
+  particles_ = kept;
+  return true;
+}
+
 bool NeighbourSearch::needs_rebuild(const NeighbourInput& input) const {
   const std::size_t n = particles_;
-  if (!built_ || input.x.size() != n || input.y.size() != n || input.z.size() != n ||
+  if (!built_ || !removed_.empty() || input.x.size() != n || input.y.size() != n || input.z.size() != n ||
       input.smoothing_length.size() != n) {
     return true;
   }

@@ -150,7 +150,8 @@ void Simulation::eject() {
     return;
   order_ = ejected_last_order(p, &active_);
   p.permute(order_);
-  force_rebuild_ = true;
+  // Kept lists lose the ejecta and are renumbered; lists of the global step are built afresh.
+  if (!search_.remove_particles(order_, active_, lists_)) force_rebuild_ = true;
 }
 
 void Simulation::add_halos(double skin, double lookahead) {
@@ -781,7 +782,7 @@ void Simulation::step(double target_time) {
                               ParticleSelection::all(p.size()));
   time_ = land ? target_time : time_ + dt;
   ++step_;
-  if (reflect_across_mirror_planes(p, problem_.box) > 0) force_rebuild_ = true;
+  if (reflect_across_mirror_planes(p, problem_.box) > 0 && !search_.keeps_lists()) force_rebuild_ = true;
   eject();
   const auto mach = [&] {
     auto scope = timers_.measure("diagnostics");

@@ -6,17 +6,17 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <functional>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
-#include "craterkit/sph/particles/mirror_image.hpp"
 #include "craterkit/sph/neighbours/neighbour_search.hpp"
+#include "craterkit/sph/particles/mirror_image.hpp"
 
 namespace craterkit::sph {
 namespace {
@@ -318,6 +318,104 @@ TEST(MirrorNeighbourSearch, KeptListsHoldEveryImagePairWhileParticlesMove) {
   }
   EXPECT_GT(image_pairs, 1000u);
   EXPECT_GT(search.searches(), c.x.size());
+}
+
+// The pairs of list i within h_i + h_j (images placed by their bits), in list order: what a pair loop sums.
+std::vector<std::uint32_t> within_support(const NeighbourLists& lists, const Cloud& c, const Box& box,
+                                          std::size_t i) {
+  std::vector<std::uint32_t> out;
+  for (const std::uint32_t e : lists.of(i)) {
+    const std::size_t j = neighbour_index(e);
+    const unsigned bits = mirror_bits(e);
+    const double pj[3] = {c.x[j], c.y[j], c.z[j]};
+    const double pi[3] = {c.x[i], c.y[i], c.z[i]};
+    double d2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double image = ((bits >> a) & 1u) ? 2.0 * box.lower[a] - pj[a] : pj[a];
+      d2 += (pi[a] - image) * (pi[a] - image);
+    }
+    const double reach = c.h[i] + c.h[j];
+    if (d2 < reach * reach) out.push_back(e);
+  }
+  return out;
+}
+
+// As an impact run keeps its lists: particles cross the planes a little within a block and are reflected
+// back at its end, and every few blocks some leave (ejecta: the stayers keep their order, the leavers go
+// behind them). Neither needs a restructure: after each, every pair and image pair within h_i + h_j is
+// listed, and the pairs within the support are those of lists searched afresh, in the same order.
+TEST(MirrorNeighbourSearch, KeptListsFollowReflectionsAndParticlesThatLeave) {
+  Cloud c = random_cloud(1500, {0.0, 0.0, 0.0}, 0.03, 0.06, 23);
+  for (std::size_t i = 0; i < c.x.size(); i += 8) {  // some within 0.003 of a plane, some of both
+    c.x[i] *= 0.003;
+    if (i % 16 == 0) c.y[i] *= 0.003;
+  }
+  const Box box = mirror_box({0.0, 0.0, 0.0}, {true, true, false});
+  NeighbourSearchOptions options;
+  options.skin = 0.2;
+  NeighbourSearch search(options), fresh(options);
+  NeighbourLists lists, fresh_lists;
+  std::mt19937_64 rng(4);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t removed = 0, reflected = 0, crossed_pairs = 0;
+  const auto check = [&](const char* when, int round) {
+    const std::size_t n = c.x.size();
+    ASSERT_EQ(lists.particle_count(), n);
+    fresh.update(c.input(), box, fresh_lists, true);
+    const auto exact = brute_force(c, box, 0.0);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto got = lists.of(i);
+      ASSERT_TRUE(std::adjacent_find(got.begin(), got.end(), std::greater_equal<>()) == got.end()) << i;
+      for (const std::uint32_t e : got) ASSERT_LT(neighbour_index(e), n) << when << ", round " << round;
+      for (const std::uint32_t e : exact[i]) {
+        ASSERT_TRUE(std::binary_search(got.begin(), got.end(), e))
+            << when << ", round " << round << ": entry " << e << " of particle " << i << " missing";
+        if (c.x[i] < 0.0 || c.y[i] < 0.0) ++crossed_pairs;
+      }
+      ASSERT_EQ(within_support(lists, c, box, i), within_support(fresh_lists, c, box, i))
+          << when << ", round " << round << ", particle " << i;
+    }
+  };
+  for (int round = 0; round < 12; ++round) {
+    // Within the block: a move that may take particles up to 0.001 across a plane (in 12 blocks less than the
+    // margin by which the image bands are widened: no particle comes from beyond them).
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      c.x[i] += 0.001 * unit(rng);
+      c.y[i] += 0.001 * unit(rng);
+      c.z[i] += 0.006 * unit(rng);
+    }
+    search.update(c.input(), box, lists, round == 0);
+    check("moved", round);
+    // At its end: reflected back across the planes, then, every third block, some particles leave.
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      reflected += c.x[i] < 0.0 || c.y[i] < 0.0 ? 1 : 0;
+      c.x[i] = std::abs(c.x[i]);
+      c.y[i] = std::abs(c.y[i]);
+    }
+    if (round % 3 == 2) {
+      std::vector<std::uint32_t> order, leavers;
+      for (std::uint32_t i = 0; i < c.x.size(); ++i)
+        (i % 37 == std::uint32_t(round) % 37 ? leavers : order).push_back(i);
+      const std::size_t kept = order.size();
+      order.insert(order.end(), leavers.begin(), leavers.end());
+      Cloud next;
+      for (std::size_t k = 0; k < kept; ++k) {
+        next.x.push_back(c.x[order[k]]);
+        next.y.push_back(c.y[order[k]]);
+        next.z.push_back(c.z[order[k]]);
+        next.h.push_back(c.h[order[k]]);
+      }
+      ASSERT_TRUE(search.remove_particles(order, kept, lists));
+      removed += c.x.size() - kept;
+      c = next;
+    }
+    search.update(c.input(), box, lists, false);
+    check("reflected and left", round);
+  }
+  EXPECT_GT(reflected, 100u);
+  EXPECT_GT(crossed_pairs, 500u);
+  EXPECT_GT(removed, 100u);
+  EXPECT_EQ(search.restructures(), 1u);  // the first call only
 }
 
 }  // namespace

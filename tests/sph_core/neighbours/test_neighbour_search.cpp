@@ -406,5 +406,65 @@ TEST(NeighbourSearch, MinimumImageAndWrap) {
   EXPECT_DOUBLE_EQ(wrap_position(box, 1, 12.0), 12.0);
 }
 
+// Particles leaving kept lists (ejecta): the lists of the stayers lose them and are renumbered, with the
+// pairs within the support those of a fresh search, in the same order; later calls keep them without a
+// restructure. Lists of build(), and orders that do not keep the stayers ascending, are refused untouched.
+TEST(NeighbourSearch, KeptListsLoseParticlesThatLeave) {
+  Cloud c = random_cloud(2000, 0.03, 0.06, 0.0, 12);
+  const Box box{};
+  NeighbourSearchOptions options;
+  options.skin = 0.2;
+  NeighbourSearch search(options), fresh(options);
+  NeighbourLists lists, fresh_lists;
+  search.update(c.input(), box, lists, true);
+  for (int round = 0; round < 3; ++round) {
+    std::vector<std::uint32_t> order, leavers;
+    for (std::uint32_t i = 0; i < c.x.size(); ++i)
+      (i % 23 == std::uint32_t(round) ? leavers : order).push_back(i);
+    const std::size_t kept = order.size();
+    order.insert(order.end(), leavers.begin(), leavers.end());
+    Cloud next;
+    for (std::size_t k = 0; k < kept; ++k) {
+      next.x.push_back(c.x[order[k]] + 0.002);  // and a small move, within the skin
+      next.y.push_back(c.y[order[k]]);
+      next.z.push_back(c.z[order[k]]);
+      next.h.push_back(c.h[order[k]]);
+    }
+    ASSERT_TRUE(search.remove_particles(order, kept, lists));
+    c = next;
+    search.update(c.input(), box, lists, false);
+    fresh.update(c.input(), box, fresh_lists, true);
+    expect_kept_lists_cover(lists, brute_force(c, box, 0.0), round);
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      const auto within = [&](const NeighbourLists& l) {
+        std::vector<std::uint32_t> out;
+        for (const std::uint32_t j : l.of(i)) {
+          EXPECT_LT(j, c.x.size());
+          const double d[3] = {c.x[i] - c.x[j], c.y[i] - c.y[j], c.z[i] - c.z[j]};
+          const double reach = c.h[i] + c.h[j];
+          if (d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < reach * reach) out.push_back(j);
+        }
+        return out;
+      };
+      ASSERT_EQ(within(lists), within(fresh_lists)) << "round " << round << ", particle " << i;
+    }
+  }
+  EXPECT_EQ(search.restructures(), 1u);
+
+  const std::size_t n = c.x.size();
+  std::vector<std::uint32_t> swapped(n);
+  for (std::uint32_t i = 0; i < n; ++i) swapped[i] = i;
+  std::swap(swapped[0], swapped[1]);
+  const NeighbourLists before = lists;
+  EXPECT_FALSE(search.remove_particles(swapped, n - 1, lists));  // stayers not ascending
+  EXPECT_EQ(lists.neighbours, before.neighbours);
+  EXPECT_EQ(lists.offsets, before.offsets);
+  NeighbourSearch global(options);
+  NeighbourLists built = global.build(c.input(), box);
+  std::vector<std::uint32_t> identity(n);
+  for (std::uint32_t i = 0; i < n; ++i) identity[i] = i;
+  EXPECT_FALSE(global.remove_particles(identity, n - 1, built));  // not kept lists: build afresh
+}
+
 }  // namespace
 }  // namespace craterkit::sph

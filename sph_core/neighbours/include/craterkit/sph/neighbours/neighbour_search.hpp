@@ -129,6 +129,18 @@ class NeighbourSearch {
   // skips the pairs beyond h_i + h_j sums the same terms in the same order whatever superset it was given:
   // results do not depend on when the lists were searched (restarts, checkpoints). Throws as build().
   void update(const NeighbourInput& input, const Box& box, NeighbourLists& lists, bool restructure);
+  // Particles leaving the search (ejecta), without a search: `order` is the permutation the particles went
+  // through (new index k holds old particle order[k]), of which the first `kept` stay, in increasing old
+  // index. The lists of update() lose the entries of the particles that left and are renumbered; a list's
+  // entries keep their order (the renumbering is monotone), so the next update() and every pair loop see
+  // what they would after a restructure (update()). The leavers' anchors stay in the tree, marked, and
+  // are never listed again. Returns false, changing nothing, when the lists are not update()'s or `order`
+  // is not such a permutation of the search's particles: then build or restructure.
+  bool remove_particles(std::span<const std::uint32_t> order, std::size_t kept, NeighbourLists& lists);
+  // The lists are update()'s: kept from call to call, each particle's checked against its anchor. A particle
+  // reflected back across a mirror plane then needs nothing more (it is near its anchor, its image near the
+  // image's), where build()'s lists of the global step are built afresh.
+  [[nodiscard]] bool keeps_lists() const { return kept_ && built_; }
   // Octree builds by update() (each re-anchors every particle).
   [[nodiscard]] std::uint64_t restructures() const { return restructures_; }
   // Particle lists searched by update() (all particles at a restructure, the moved ones otherwise).
@@ -156,8 +168,8 @@ class NeighbourSearch {
     std::int32_t group;  // leaf: index into groups_, internal: -1
   };
 
-  void sort_particles(const NeighbourInput& input, const Box& box);
-  void add_mirror_images(const NeighbourInput& input, const Box& box, double h_max);
+  void sort_particles(const NeighbourInput& input, const Box& box, bool kept_lists);
+  void add_mirror_images(const NeighbourInput& input, const Box& box, double h_max, double margin);
   void make_octree();
   void split_at_median(std::uint32_t begin, std::uint32_t end);
   // Lists of every real particle with pairs r < grow (h_i + h_j), in three steps: index_sorted_particles
@@ -238,6 +250,9 @@ class NeighbourSearch {
   std::uint64_t unused_ = 0;               // entries of abandoned slots (moved to the end)
   std::vector<std::uint8_t> moved_;        // per particle: re-anchored in this call
   std::vector<std::uint32_t> moved_list_;  // their indices, ascending
+  // remove_particles(): per sorted entry, 1 when its particle has left (empty when none has since the last
+  // build).
+  std::vector<std::uint8_t> removed_;
   std::vector<std::array<double, 4>> moved_anchor_;  // their new anchors (x, y, z wrapped; h)
   std::vector<std::uint64_t> fresh_offsets_;         // their new lists, in moved_list_ order (CSR)
   std::vector<std::uint32_t> fresh_;
