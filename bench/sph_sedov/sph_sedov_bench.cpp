@@ -9,9 +9,11 @@
 // the impact runs use (no density pass).
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -86,12 +88,16 @@ int main(int argc, char** argv) {
         thread_counts.push_back(std::atoi(list.substr(pos, comma - pos).c_str()));
         pos = comma == std::string::npos ? list.size() : comma + 1;
       }
-    } else {
+    } else if (!arg.empty() && arg.find_first_not_of("0123456789") == std::string::npos) {
       sides.push_back(std::atoi(arg.c_str()));
+    } else {
+      steps = 0;  // an unknown option or a side that is not a number: the usage below
+      break;
     }
   }
   if (sides.empty()) sides = {46, 100};
-  if (steps < 1 || thread_counts.empty()) {
+  const bool sides_valid = std::all_of(sides.begin(), sides.end(), [](int n) { return n >= 2; });
+  if (steps < 1 || thread_counts.empty() || !sides_valid) {
     std::fprintf(
         stderr,
         "usage: sph_sedov_bench [n_per_side ...] [--steps S] [--threads 1,2] [--skin S] [--continuity]\n");
@@ -103,7 +109,13 @@ int main(int argc, char** argv) {
   for (const int n : sides) {
     double single = 0.0;
     for (const int t : thread_counts) {
-      const auto m = measure(n, t, steps, search, density);
+      Measurement m;
+      try {
+        m = measure(n, t, steps, search, density);
+      } catch (const std::exception& e) {  // e.g. too few particles per side for the blast radius
+        std::fprintf(stderr, "sph_sedov_bench: %d per side: %s\n", n, e.what());
+        return 1;
+      }
       if (t == thread_counts.front()) single = m.updates_per_second / t;
       std::printf("| %d | %d | %.3f | %.3g | %.1f | %.0f | %.0f %% | %s |\n", n * n * n, t,
                   m.seconds_per_step, m.updates_per_second, m.neighbours, m.bytes,
