@@ -479,7 +479,10 @@ ParticleSelection Simulation::neighbourhood_of(std::span<const std::uint32_t> pa
   const auto count = static_cast<std::int64_t>(particles.size());
   std::uint8_t* mark = needed_mark_.data();
   const PairSupport support = pair_support(problem_.particles, problem_.box);
-#pragma omp parallel for schedule(dynamic, 64)
+  // Static: each thread marks the neighbours of one contiguous run of the (curve-ordered) particles, so the
+  // threads share marks only where their runs meet; interleaved chunks made them contend for the same cache
+  // lines (2.6 times the processor time of one thread, bench/RESULTS.md).
+#pragma omp parallel for schedule(static)
   for (std::int64_t kk = 0; kk < count; ++kk) {
     const std::size_t i = particles[static_cast<std::size_t>(kk)];
     std::atomic_ref<std::uint8_t>(mark[i]).store(1, std::memory_order_relaxed);
