@@ -770,9 +770,9 @@ void NeighbourSearch::restructure(const NeighbourInput& input, const Box& box, N
 }
 
 // Marks the particles whose motion since their anchor exceeds the skin and records their new anchors.
-// False when one of them needs a restructure: grown beyond the build's largest h (the image reach and the
-// periodic edge test assumed it), or, with mirror planes, come near a plane it has no image across, or
-// further across a plane than any particle of the build (docs in add_mirror_images).
+// False when one of them needs a restructure: grown beyond build_h_max_ ((1 + s) times the build's largest h;
+// the image reach and the periodic edge test assumed it), or, with mirror planes, come near a plane it has no
+// image across, or further across a plane than any particle of the build (docs in add_mirror_images).
 bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box) {
   const std::size_t n = particles_;
   const double skin = options_.skin;

@@ -295,8 +295,8 @@ TEST(NeighbourSearch, KeptListsHoldEveryPairWhileParticlesMove) {
       if (i % 997 == 0) c.x[i] += 0.3 * unit(rng);
     }
   }
-  // A moved particle whose h outgrows the build's largest h forces a restructure (the h here grow towards
-  // 0.06): at most a few, not one per round.
+  // A moved particle whose h outgrows (1 + s) times the build's largest h forces a restructure (the h here
+  // grow towards 0.06): at most a few, not one per round.
   EXPECT_LE(search.restructures(), 3u);
   EXPECT_GT(search.searches(), c.x.size());               // some particles were searched again
   EXPECT_LT(search.searches(), c.x.size() * rounds / 3);  // most lists were kept

@@ -124,10 +124,10 @@ class NeighbourSearch {
   // h_i + h_j unlisted, by the triangle inequality), re-anchors them, and adds each to the lists of its new
   // neighbours. The octree is built over the anchors and refit when some move; it is rebuilt afresh (all
   // particles re-anchored) with `restructure`, when the count or box changed, when a re-anchored particle
-  // would need a mirror image the build did not make or has outgrown the build's largest h, and when moved
-  // slots have left too much of the array unused. Each list is sorted by entry, so that a pair loop that
-  // skips the pairs beyond h_i + h_j sums the same terms in the same order whatever superset it was given:
-  // results do not depend on when the lists were searched (restarts, checkpoints). Throws as build().
+  // would need a mirror image the build did not make or has outgrown (1 + s) times the build's largest h, and
+  // when moved slots have left too much of the array unused. Each list is sorted by entry, so that a pair
+  // loop that skips the pairs beyond h_i + h_j sums the same terms in the same order whatever superset it was
+  // given: results do not depend on when the lists were searched (restarts, checkpoints). Throws as build().
   void update(const NeighbourInput& input, const Box& box, NeighbourLists& lists, bool restructure);
   // Particles leaving the search (ejecta), without a search: `order` is the permutation the particles went
   // through (new index k holds old particle order[k]), of which the first `kept` stay, in increasing old
