@@ -785,7 +785,9 @@ void Simulation::step(double target_time) {
                               ParticleSelection::all(p.size()));
   time_ = land ? target_time : time_ + dt;
   ++step_;
-  if (reflect_across_mirror_planes(p, problem_.box) > 0 && !search_.keeps_lists()) force_rebuild_ = true;
+  // No new search for a particle reflected back: the skin tests of the search (needs_rebuild, update)
+  // measure how far it is from where it was searched like any other particle's, and its image moves with it.
+  (void)reflect_across_mirror_planes(p, problem_.box);
   eject();
   const auto mach = [&] {
     auto scope = timers_.measure("diagnostics");

@@ -137,10 +137,6 @@ class NeighbourSearch {
   // are never listed again. Returns false, changing nothing, when the lists are not update()'s or `order`
   // is not such a permutation of the search's particles: then build or restructure.
   bool remove_particles(std::span<const std::uint32_t> order, std::size_t kept, NeighbourLists& lists);
-  // The lists are update()'s: kept from call to call, each particle's checked against its anchor. A particle
-  // reflected back across a mirror plane then needs nothing more (it is near its anchor, its image near the
-  // image's), where build()'s lists of the global step are built afresh.
-  [[nodiscard]] bool keeps_lists() const { return kept_ && built_; }
   // Octree builds by update() (each re-anchors every particle).
   [[nodiscard]] std::uint64_t restructures() const { return restructures_; }
   // Particle lists searched by update() (all particles at a restructure, the moved ones otherwise).
