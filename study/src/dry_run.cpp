@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "craterkit/study/child_process.hpp"
+#include "craterkit/common/child_process.hpp"
 
 namespace craterkit::study {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <thread>
 
-#include "craterkit/study/child_process.hpp"
+#include "craterkit/common/child_process.hpp"
 #include "craterkit/study/progress.hpp"
 #include "craterkit/study/run_lock.hpp"
 #include "craterkit/study/run_result.hpp"

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <optional>
 
-#include "craterkit/study/child_process.hpp"
+#include "craterkit/common/child_process.hpp"
 #include "craterkit/study/run_lock.hpp"
 #include "craterkit/study/run_result.hpp"
 #include "craterkit/study/study_plan.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "craterkit/study/child_process.hpp"
+#include "craterkit/common/child_process.hpp"
 #include "craterkit/study/study_plan.hpp"
 
 namespace craterkit::study {

@@ -1,4 +1,4 @@
-#include "craterkit/study/child_process.hpp"
+#include "craterkit/common/child_process.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -11,7 +11,7 @@
 
 extern char** environ;
 
-namespace craterkit::study {
+namespace craterkit {
 
 std::string ExitStatus::describe() const {
   if (!signalled) return "exit status " + std::to_string(code);
@@ -93,4 +93,4 @@ ExitStatus wait_child(pid_t pid) {
   return to_exit_status(status);
 }
 
-}  // namespace craterkit::study
+}  // namespace craterkit

@@ -1,5 +1,5 @@
 #pragma once
-// A child process for one run (posix_spawn): stdin from /dev/null, stdout into a file (not a pipe, so that
+// A child process (posix_spawn): stdin from /dev/null, stdout into a file (not a pipe, so that
 // the child outlives a killed parent without a broken pipe), stderr appended to a log, and exactly the
 // descriptors it is given kept open (their close-on-exec flag cleared in the child only).
 #include <sys/types.h>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace craterkit::study {
+namespace craterkit {
 
 struct ChildCommand {
   std::filesystem::path program;
@@ -33,4 +33,4 @@ pid_t spawn_child(const ChildCommand& command);
 std::optional<ExitStatus> poll_child(pid_t pid);
 ExitStatus wait_child(pid_t pid);
 
-}  // namespace craterkit::study
+}  // namespace craterkit

@@ -1,0 +1,24 @@
+#pragma once
+// LAMMPS as a child process: Debian's `lmp` (or $CRATERKIT_LAMMPS) runs an input script craterkit wrote, in
+// a folder of its own, serially or under `mpirun -n N`. LAMMPS ends its process on any error of its input,
+// so it cannot share craterkit's; a failed run is reported with the ERROR line of its log.
+#include <filesystem>
+#include <string>
+
+namespace craterkit::dem {
+
+// The LAMMPS executable: $CRATERKIT_LAMMPS if set, else `lmp` on PATH; std::runtime_error saying how to
+// install it when there is none.
+[[nodiscard]] std::filesystem::path find_lammps();
+
+struct LammpsRun {
+  std::filesystem::path folder;  // the script, its log and every file it writes
+  std::string script_name;       // input script inside folder
+  int processes = 1;             // > 1: under mpirun (Open MPI)
+};
+
+// Runs the script to its end, the working directory being `folder`. std::runtime_error naming the log and
+// quoting its ERROR line (or the exit status) when LAMMPS fails.
+void run_lammps(const LammpsRun& run);
+
+}  // namespace craterkit::dem

@@ -1,0 +1,164 @@
+#include "craterkit/dem/column_collapse.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <stdexcept>
+
+#include "craterkit/common/atomic_file.hpp"
+#include "craterkit/common/checks.hpp"
+#include "craterkit/dem/granular_bed.hpp"
+#include "craterkit/dem/lammps_files.hpp"
+#include "craterkit/dem/lammps_process.hpp"
+
+namespace craterkit::dem {
+
+namespace {
+
+std::string collapse_script(const ColumnSpec& spec, double wall_x, double time_step, long max_steps) {
+  const std::string model =
+      lammps_contact_model(spec.contact, spec.grain_sizes.mean_diameter(), spec.grain_density);
+  const double rest_speed =
+      spec.rest_speed_fraction * std::sqrt(spec.gravity * spec.grain_sizes.mean_diameter());
+  const long check_every = std::max(100L, max_steps / 1000);
+  return fmt::format(
+      R"(# craterkit: a granular column collapses against its back wall (docs/dem.md, "Angle of repose")
+units si
+atom_style sphere
+atom_modify map array
+boundary f p fm
+newton off
+comm_modify vel yes
+read_data column.data
+pair_style granular
+pair_coeff * * {model}
+fix floor all wall/gran granular {model} zplane 0.0 NULL
+fix walls all wall/gran granular {model} xplane {wall:.17g} {end:.17g}
+fix gravity all gravity {gravity:.17g} vector 0 0 -1
+fix move all nve/sphere
+{drag}
+neighbor {skin:.17g} bin
+neigh_modify delay 0
+timestep {dt:.17g}
+variable speed atom sqrt(vx*vx+vy*vy+vz*vz)
+compute mean_speed all reduce ave v_speed
+variable mean_speed equal c_mean_speed
+variable collapse_time equal time
+thermo {check}
+thermo_style custom step atoms ke v_mean_speed
+run {check}
+fix rest all halt {check} v_mean_speed < {rest:.17g} error continue
+run {steps}
+print "collapse ${{mean_speed}} ${{collapse_time}}" file collapse_status.txt
+write_dump all custom deposit.dump {columns} modify sort id format float %.17g
+)",
+      fmt::arg("model", model), fmt::arg("wall", wall_x), fmt::arg("end", spec.floor_length),
+      fmt::arg("gravity", spec.gravity), fmt::arg("skin", 0.25 * spec.grain_sizes.max_diameter),
+      fmt::arg("dt", time_step), fmt::arg("check", check_every), fmt::arg("rest", rest_speed),
+      fmt::arg("steps", max_steps), fmt::arg("columns", dump_columns),
+      fmt::arg("drag", spec.drag_time > 0 ? fmt::format("fix drag all langevin 0 0 {:.17g} {} omega yes",
+                                                        spec.drag_time, spec.seed)
+                                          : std::string("# no drag: a free collapse")));
+}
+
+}  // namespace
+
+Deposit collapse_column(const ColumnSpec& spec, const std::filesystem::path& folder) {
+  require_positive(spec.floor_length - spec.width, "column.floor_length - column.width");
+  require_non_negative(spec.drag_time, "column.drag_time");
+  BedSpec bed_spec;
+  bed_spec.length_x = spec.width;
+  bed_spec.length_y = spec.thickness;
+  bed_spec.depth = spec.height;
+  bed_spec.grain_sizes = spec.grain_sizes;
+  bed_spec.grain_density = spec.grain_density;
+  bed_spec.contact = spec.contact;
+  bed_spec.gravity = spec.gravity;
+  bed_spec.seed = spec.seed;
+  bed_spec.rest_speed_fraction = spec.rest_speed_fraction;
+  bed_spec.processes = spec.processes;
+  std::filesystem::create_directories(folder);
+  SettledBed column = settle_bed(bed_spec, folder / "column");
+
+  // The periodic seam becomes the back wall and the gate: the wall stands at the edge of the grain reaching
+  // furthest back, so that no grain starts inside it.
+  double wall_x = 0;
+  for (std::size_t i = 0; i < column.grains.size(); ++i)
+    wall_x = std::min(wall_x, column.grains.x[i] - 0.5 * column.grains.diameter[i]);
+  const double time_step = hertz_contact_time(spec.contact, spec.grain_sizes.min_diameter, spec.grain_density,
+                                              std::sqrt(2.0 * spec.gravity * spec.height)) /
+                           50.0;
+  // A free collapse rests within about 10 sqrt(H/g); a dragged one creeps for longer.
+  const double longest = (spec.drag_time > 0 ? 200.0 : 60.0) * std::sqrt(spec.height / spec.gravity);
+  const auto max_steps = static_cast<long>(std::ceil(longest / time_step));
+  write_lammps_data(folder / "column.data", column.grains,
+                    Box{wall_x, spec.floor_length, 0, spec.thickness, 0, 2.0 * spec.height});
+  write_atomically(folder / "collapse.in", [&](const std::filesystem::path& tmp) {
+    std::ofstream(tmp) << collapse_script(spec, wall_x, time_step, max_steps);
+  });
+  std::filesystem::remove(folder / "collapse_status.txt");
+  run_lammps({folder, "collapse.in", spec.processes});
+  std::ifstream status(folder / "collapse_status.txt");
+  std::string word;
+  double mean_speed = 0;
+  Deposit deposit;
+  if (!(status >> word >> mean_speed >> deposit.collapse_time) || word != "collapse")
+    throw std::runtime_error(
+        fmt::format("{}: LAMMPS did not report the collapse", (folder / "collapse_status.txt").string()));
+  const double rest_speed =
+      spec.rest_speed_fraction * std::sqrt(spec.gravity * spec.grain_sizes.mean_diameter());
+  if (!(mean_speed < rest_speed))
+    throw std::runtime_error(
+        fmt::format("the column did not come to rest within {} steps (mean grain speed {:g} m/s, "
+                    "at rest below {:g} m/s); see {}",
+                    max_steps, mean_speed, rest_speed, (folder / "collapse.log").string()));
+  deposit.grains = read_lammps_dump(folder / "deposit.dump");
+  deposit.profile = surface_profile(deposit.grains, spec.floor_length, spec.grain_sizes.max_diameter);
+  deposit.flank = flank_slope(deposit.profile, 0.2, 0.8);
+  return deposit;
+}
+
+SurfaceProfile surface_profile(const Grains& grains, double length, double cell) {
+  const auto columns = static_cast<std::size_t>(std::ceil(length / cell));
+  SurfaceProfile profile;
+  profile.height.assign(columns, 0.0);
+  for (std::size_t c = 0; c < columns; ++c) profile.x.push_back((static_cast<double>(c) + 0.5) * cell);
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    if (grains.x[i] < 0) continue;
+    const auto c = static_cast<std::size_t>(grains.x[i] / cell);
+    if (c >= columns) continue;
+    profile.height[c] = std::max(profile.height[c], grains.z[i] + 0.5 * grains.diameter[i]);
+  }
+  return profile;
+}
+
+FlankFit flank_slope(const SurfaceProfile& profile, double lower, double upper) {
+  std::size_t peak = 0;
+  for (std::size_t c = 0; c < profile.height.size(); ++c)
+    if (profile.height[c] > profile.height[peak]) peak = c;
+  const double top = profile.height[peak];
+  double sx = 0, sz = 0, sxx = 0, sxz = 0;
+  FlankFit fit;
+  for (std::size_t c = peak; c < profile.height.size(); ++c) {
+    const double z = profile.height[c];
+    if (z < lower * top || z > upper * top) continue;
+    sx += profile.x[c];
+    sz += z;
+    sxx += profile.x[c] * profile.x[c];
+    sxz += profile.x[c] * z;
+    ++fit.columns;
+  }
+  if (fit.columns < 3) {
+    fit.columns = 0;
+    return fit;
+  }
+  const double n = fit.columns;
+  const double slope = (n * sxz - sx * sz) / (n * sxx - sx * sx);
+  fit.angle_degrees = std::atan(-slope) * 180.0 / std::numbers::pi;
+  return fit;
+}
+
+}  // namespace craterkit::dem

@@ -1,0 +1,234 @@
+// The parts of the DEM late stage that do not settle anything: the contact law's checks and its LAMMPS model,
+// the data and dump files read and written by LAMMPS itself, LAMMPS failures, the bed's cache key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "craterkit/common/input_error.hpp"
+#include "craterkit/dem/column_collapse.hpp"
+#include "craterkit/dem/grain_contact.hpp"
+#include "craterkit/dem/granular_bed.hpp"
+#include "craterkit/dem/lammps_files.hpp"
+#include "craterkit/dem/lammps_process.hpp"
+#include "dem/dem_test_folder.hpp"
+
+namespace craterkit::dem {
+namespace {
+
+using testing::TestFolder;
+
+std::string input_error_of(const auto& call) {
+  try {
+    call();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no InputError";
+}
+
+TEST(GrainContact, OutOfRangeValuesNameTheirKey) {
+  GrainContact contact;
+  EXPECT_NO_THROW(check_grain_contact(contact, "late_stage.dem"));
+  contact.restitution = 1.5;
+  EXPECT_EQ(input_error_of([&] { check_grain_contact(contact, "late_stage.dem"); }),
+            "late_stage.dem.restitution: value 1.5 out of range: allowed (0, 1]");
+  contact = GrainContact{};
+  contact.sliding_friction = -0.1;
+  EXPECT_NE(input_error_of([&] { check_grain_contact(contact, "t"); }).find("t.sliding_friction: value -0.1"),
+            std::string::npos);
+  contact = GrainContact{};
+  contact.poisson_ratio = 0.5;
+  EXPECT_NE(input_error_of([&] { check_grain_contact(contact, "t"); }).find("t.poisson_ratio"),
+            std::string::npos);
+}
+
+TEST(GrainContact, HertzContactTimeFollowsItsScaling) {
+  // t_c ~ m^(2/5) R^(-1/5) E*^(-2/5) v^(-1/5): at fixed density m ~ d^3, so t_c ~ d (Johnson 1985,
+  // sec. 11.4).
+  GrainContact contact;
+  const double t1 = hertz_contact_time(contact, 0.01, 2500, 1.0);
+  EXPECT_NEAR(hertz_contact_time(contact, 0.02, 2500, 1.0) / t1, 2.0, 1e-12);
+  EXPECT_NEAR(hertz_contact_time(contact, 0.01, 2500, 32.0) / t1, 0.5, 1e-12);
+  contact.youngs_modulus *= 32.0;
+  EXPECT_NEAR(hertz_contact_time(contact, 0.01, 2500, 1.0) / t1, std::pow(32.0, -0.4), 1e-12);
+}
+
+TEST(GrainContact, ModelCarriesEveryFrictionToLammps) {
+  GrainContact contact;
+  contact.sliding_friction = 0.61;
+  contact.rolling_friction = 0.07;
+  const std::string model = lammps_contact_model(contact, 0.01, 2500);
+  EXPECT_NE(model.find("tangential mindlin NULL 1.0 0.60999999999999999"), std::string::npos) << model;
+  EXPECT_NE(model.find(" 0.070000000000000007 twisting marshall damping tsuji"), std::string::npos) << model;
+  EXPECT_EQ(model.rfind("hertz/material 10000000 0.5 0.29999999999999999 ", 0), 0U) << model;
+}
+
+Grains some_grains(std::size_t n) {
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Grains grains;
+  for (std::size_t i = 0; i < n; ++i) {
+    grains.add(0.05 + 0.1 * u(random), 0.05 + 0.1 * u(random), 0.01 + 0.2 * u(random),
+               0.008 + 0.004 * u(random), 2000 + 1000 * u(random));
+    grains.vx.back() = u(random) - 0.5;
+    grains.vy.back() = u(random) - 0.5;
+    grains.vz.back() = u(random) - 0.5;
+    grains.omega_x.back() = 10 * (u(random) - 0.5);
+    grains.omega_y.back() = 10 * (u(random) - 0.5);
+    grains.omega_z.back() = 10 * (u(random) - 0.5);
+  }
+  return grains;
+}
+
+TEST(LammpsFiles, LammpsReadsTheDataFileAndItsDumpReadsBackTheSameGrains) {
+  const TestFolder folder;
+  const Grains grains = some_grains(50);
+  write_lammps_data(folder.path() / "grains.data", grains, Box{0, 0.2, 0, 0.2, 0, 0.25});
+  {
+    std::ofstream script(folder.path() / "copy.in");
+    script << "units si\natom_style sphere\natom_modify map array\nboundary p p f\nread_data grains.data\n"
+           << "write_dump all custom copy.dump " << dump_columns << " modify sort id format float %.17g\n";
+  }
+  run_lammps({folder.path(), "copy.in", 1});
+  const Grains back = read_lammps_dump(folder.path() / "copy.dump");
+  ASSERT_EQ(back.size(), grains.size());
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    EXPECT_EQ(back.x[i], grains.x[i]);
+    EXPECT_EQ(back.z[i], grains.z[i]);
+    EXPECT_EQ(back.vy[i], grains.vy[i]);
+    EXPECT_EQ(back.omega_z[i], grains.omega_z[i]);
+    EXPECT_EQ(back.diameter[i], grains.diameter[i]);
+    // LAMMPS stores the mass; the density comes back from it.
+    EXPECT_NEAR(back.density[i], grains.density[i], 1e-12 * grains.density[i]);
+  }
+  EXPECT_NEAR(total_mass(back), total_mass(grains), 1e-12 * total_mass(grains));
+}
+
+TEST(LammpsProcess, RunsUnderMpirunOverTwoProcesses) {
+  // Open MPI refuses root (CI containers) unless told; cross-memory attach is refused in some containers.
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
+  ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
+  ::setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 0);
+  const TestFolder folder;
+  const Grains grains = some_grains(40);
+  write_lammps_data(folder.path() / "grains.data", grains, Box{0, 0.2, 0, 0.2, 0, 0.25});
+  std::ofstream(folder.path() / "copy.in")
+      << "units si\natom_style sphere\natom_modify map array\nboundary p p f\nread_data grains.data\n"
+      << "run 0\n"
+      << "write_dump all custom copy.dump " << dump_columns << " modify sort id format float %.17g\n";
+  run_lammps({folder.path(), "copy.in", 2});
+  std::ifstream log(folder.path() / "copy.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find(" on 2 procs for 0 steps"), std::string::npos) << text;
+  const Grains back = read_lammps_dump(folder.path() / "copy.dump");
+  ASSERT_EQ(back.size(), grains.size());
+  for (std::size_t i = 0; i < grains.size(); ++i) EXPECT_EQ(back.y[i], grains.y[i]);
+}
+
+TEST(LammpsFiles, ADumpWithOtherColumnsIsRefusedNamingFileAndLine) {
+  const TestFolder folder;
+  const auto path = folder.path() / "other.dump";
+  std::ofstream(path)
+      << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\n"
+      << "ITEM: ATOMS id x y z\n1 0.5 0.5 0.5\n";
+  try {
+    (void)read_lammps_dump(path);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find(path.string() + ":9: not a craterkit grain dump: columns 'id x y z'"),
+        std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(LammpsProcess, AFailedRunQuotesTheLammpsErrorAndItsLog) {
+  const TestFolder folder;
+  std::ofstream(folder.path() / "bad.in") << "units si\natom_style no_such_style\n";
+  try {
+    run_lammps({folder.path(), "bad.in", 1});
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("ERROR"), std::string::npos) << what;
+    EXPECT_NE(what.find("no_such_style"), std::string::npos) << what;
+    EXPECT_NE(what.find((folder.path() / "bad.log").string()), std::string::npos) << what;
+  }
+}
+
+TEST(SettledBedKey, EveryDefiningValueChangesTheHashButTheProcessCountDoesNot) {
+  const BedSpec base;
+  const std::string hash = bed_hash(base);
+  EXPECT_EQ(hash.size(), 16U);
+  BedSpec other = base;
+  other.processes = 2;
+  EXPECT_EQ(bed_hash(other), hash);
+  std::vector<BedSpec> changed(8, base);
+  changed[0].depth *= 1.0 + 1e-15;
+  changed[1].grain_sizes.max_diameter *= 1.1;
+  changed[2].contact.rolling_friction += 0.01;
+  changed[3].contact.restitution -= 0.1;
+  changed[4].gravity = 1.4e-4;
+  changed[5].seed = 2;
+  changed[6].grain_density += 1;
+  changed[7].length_y *= 2;
+  for (const auto& spec : changed) EXPECT_NE(bed_hash(spec), hash) << bed_key(spec);
+}
+
+TEST(SettledBedKey, BedsTooSmallForTheirGrainsAreRefused) {
+  BedSpec spec;
+  spec.grain_sizes = {0.01, 0.012};
+  spec.depth = 0.04;
+  EXPECT_NE(input_error_of([&] {
+              check_bed_spec(spec);
+            }).find("bed.depth: value 0.04 m is under 4.2 largest grains"),
+            std::string::npos);
+  spec = BedSpec{};
+  spec.grain_sizes = {0.02, 0.01};
+  EXPECT_NE(
+      input_error_of([&] { check_bed_spec(spec); }).find("bed.grain_sizes.max_diameter: value 0.01 is below"),
+      std::string::npos);
+}
+
+TEST(SurfaceAndPacking, ACubicLatticeHasItsKnownPackingFractionAndTop) {
+  // Simple cubic packing of equal spheres touching: pi/6 = 0.5236 of the volume.
+  Grains grains;
+  const double d = 0.01;
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 6; ++k) grains.add((i + 0.5) * d, (j + 0.5) * d, (k + 0.5) * d, d, 2500);
+  const Box box{0, 10 * d, 0, 10 * d, 0, 6 * d};
+  EXPECT_NEAR(packing_fraction_between(grains, box, 0.0, 6 * d), std::numbers::pi / 6.0, 1e-12);
+  // A slab through the grains' centres holds the same fraction; one through their tops the same.
+  EXPECT_NEAR(packing_fraction_between(grains, box, 1.5 * d, 3.5 * d), std::numbers::pi / 6.0, 1e-12);
+  EXPECT_NEAR(mean_surface_height(grains, box, d), 6 * d, 1e-15);
+}
+
+TEST(PileProfile, AHeapOfGrainsOnAKnownSlopeGivesThatAngle) {
+  // A heap against x = 0: flat at 0.2 m up to x = 0.1 m, then a flank at 30 degrees down to the floor, built
+  // of grains whose tops lie on that surface; the fit between 20 and 80 % of the height sees the flank only.
+  Grains grains;
+  const double d = 0.01;
+  const double slope = std::tan(30.0 * std::numbers::pi / 180.0);
+  for (int c = 0; c < 60; ++c) {
+    const double x = (c + 0.5) * d;
+    const double top = x < 0.1 ? 0.2 : std::max(0.0, 0.2 - slope * (x - 0.1));
+    for (double z = 0.5 * d; z + 0.5 * d <= top + 1e-12; z += d) grains.add(x, 0.01, z, d, 2500);
+    if (top > 0.5 * d) grains.add(x, 0.02, top - 0.5 * d, d, 2500);  // the exact top in each column
+  }
+  const SurfaceProfile profile = surface_profile(grains, 0.6, d);
+  ASSERT_EQ(profile.x.size(), 60U);
+  EXPECT_DOUBLE_EQ(profile.height[3], 0.2);
+  const FlankFit fit = flank_slope(profile, 0.2, 0.8);
+  EXPECT_NEAR(fit.angle_degrees, 30.0, 1e-9);
+  EXPECT_EQ(fit.columns, 21);  // heights 0.04-0.16 m: 0.12 m / tan 30 / d columns, +-1
+}
+
+}  // namespace
+}  // namespace craterkit::dem
