@@ -16,6 +16,7 @@
 #include "craterkit/dem/granular_bed.hpp"
 #include "craterkit/dem/lammps_files.hpp"
 #include "craterkit/dem/lammps_process.hpp"
+#include "craterkit/dem/repose_calibration.hpp"
 #include "dem/dem_test_folder.hpp"
 
 namespace craterkit::dem {
@@ -228,6 +229,44 @@ TEST(PileProfile, AHeapOfGrainsOnAKnownSlopeGivesThatAngle) {
   const FlankFit fit = flank_slope(profile, 0.2, 0.8);
   EXPECT_NEAR(fit.angle_degrees, 30.0, 1e-9);
   EXPECT_EQ(fit.columns, 21);  // heights 0.04-0.16 m: 0.12 m / tan 30 / d columns, +-1
+}
+
+TEST(ReposeCalibration, ReadsTheTableAndInvertsItBetweenRows) {
+  const TestFolder folder;
+  const auto path = folder.path() / "calibration.csv";
+  std::ofstream(path)
+      << "# piles\nsliding_friction,rolling_friction,angle_degrees\n0.85,0.05,25\n0.85,0.1,30\n"
+      << "0.85,0.3,36\n";
+  const ReposeCalibration table = read_repose_calibration(path);
+  EXPECT_EQ(table.sliding_friction, 0.85);
+  EXPECT_NEAR(rolling_friction_for_repose_angle(table, 27.5), 0.075, 1e-15);
+  EXPECT_NEAR(rolling_friction_for_repose_angle(table, 33.0), 0.2, 1e-15);
+  EXPECT_EQ(rolling_friction_for_repose_angle(table, 25.0), 0.05);
+  EXPECT_EQ(rolling_friction_for_repose_angle(table, 36.0), 0.3);
+  EXPECT_EQ(
+      input_error_of([&] { (void)rolling_friction_for_repose_angle(table, 40.0); }),
+      "angle of repose 40 degrees: outside the calibrated piles' [25, 36] degrees (sliding friction 0.85)");
+}
+
+TEST(ReposeCalibration, ATableWithoutAUniqueInverseIsRefusedNamingItsLine) {
+  const TestFolder folder;
+  const auto path = folder.path() / "calibration.csv";
+  std::ofstream(path) << "sliding_friction,rolling_friction,angle_degrees\n0.85,0.05,25\n0.85,0.1,24\n";
+  try {
+    (void)read_repose_calibration(path);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string() + ":3: angle_degrees 24 does not rise above 25"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ofstream(path) << "sliding_friction,rolling_friction,angle_degrees\n0.85,0.05,25\n0.6,0.1,30\n";
+  EXPECT_THROW((void)read_repose_calibration(path), std::runtime_error);
+}
+
+TEST(ReposeCalibration, TheShippedTableReads) {
+  const ReposeCalibration table = shipped_repose_calibration();
+  EXPECT_GE(table.rolling_friction.size(), 3U);
 }
 
 }  // namespace
