@@ -13,55 +13,44 @@
 #include "craterkit/dem/granular_bed.hpp"
 #include "craterkit/dem/lammps_files.hpp"
 #include "craterkit/dem/lammps_process.hpp"
+#include "granular_script.hpp"
 
 namespace craterkit::dem {
 
 namespace {
 
 std::string collapse_script(const ColumnSpec& spec, double wall_x, double time_step, long max_steps) {
-  const std::string model =
+  GranularScript script;
+  script.title =
+      "craterkit: a granular column collapses against its back wall (docs/dem.md, \"Angle of repose\")";
+  script.boundary = "f p fm";
+  script.data_file = "column.data";
+  script.contact_model =
       lammps_contact_model(spec.contact, spec.grain_sizes.mean_diameter(), spec.grain_density);
-  const double rest_speed =
-      spec.rest_speed_fraction * std::sqrt(spec.gravity * spec.grain_sizes.mean_diameter());
-  const long check_every = std::max(100L, max_steps / 1000);
-  return fmt::format(
-      R"(# craterkit: a granular column collapses against its back wall (docs/dem.md, "Angle of repose")
-units si
-atom_style sphere
-atom_modify map array
-boundary f p fm
-newton off
-comm_modify vel yes
-read_data column.data
-pair_style granular
-pair_coeff * * {model}
-fix floor all wall/gran granular {model} zplane 0.0 NULL
-fix walls all wall/gran granular {model} xplane {wall:.17g} {end:.17g}
-fix gravity all gravity {gravity:.17g} vector 0 0 -1
-fix move all nve/sphere
-{drag}
-neighbor {skin:.17g} bin
-neigh_modify delay 0
-timestep {dt:.17g}
-variable speed atom sqrt(vx*vx+vy*vy+vz*vz)
-compute mean_speed all reduce ave v_speed
-variable mean_speed equal c_mean_speed
-variable collapse_time equal time
-thermo {check}
-thermo_style custom step atoms ke v_mean_speed
+  script.extra_fixes = fmt::format("fix walls all wall/gran granular {} xplane {:.17g} {:.17g}\n",
+                                   script.contact_model, wall_x, spec.floor_length);
+  script.gravity = spec.gravity;
+  script.skin = 0.25 * spec.grain_sizes.max_diameter;
+  script.time_step = time_step;
+  script.check_every = rest_check_interval(max_steps);
+  const double rest = rest_speed(spec.rest_speed_fraction, spec.gravity, spec.grain_sizes.mean_diameter());
+  // The drag is defined after the integrator, as in the runs of data/dem/repose_calibration.csv (LAMMPS adds
+  // the fixes' forces in the order they were defined). The first `check` steps start the collapse before the
+  // rest check is armed (the settled column is at rest).
+  const std::string drag =
+      spec.drag_time > 0
+          ? fmt::format("fix drag all langevin 0 0 {:.17g} {} omega yes\n", spec.drag_time, spec.seed)
+          : std::string("# no drag: a free collapse\n");
+  return granular_script_start(script) + drag +
+         fmt::format(R"(variable collapse_time equal time
 run {check}
 fix rest all halt {check} v_mean_speed < {rest:.17g} error continue
 run {steps}
 print "collapse ${{mean_speed}} ${{collapse_time}}" file collapse_status.txt
 write_dump all custom deposit.dump {columns} modify sort id format float %.17g
 )",
-      fmt::arg("model", model), fmt::arg("wall", wall_x), fmt::arg("end", spec.floor_length),
-      fmt::arg("gravity", spec.gravity), fmt::arg("skin", 0.25 * spec.grain_sizes.max_diameter),
-      fmt::arg("dt", time_step), fmt::arg("check", check_every), fmt::arg("rest", rest_speed),
-      fmt::arg("steps", max_steps), fmt::arg("columns", dump_columns),
-      fmt::arg("drag", spec.drag_time > 0 ? fmt::format("fix drag all langevin 0 0 {:.17g} {} omega yes",
-                                                        spec.drag_time, spec.seed)
-                                          : std::string("# no drag: a free collapse")));
+                     fmt::arg("check", script.check_every), fmt::arg("rest", rest),
+                     fmt::arg("steps", max_steps), fmt::arg("columns", dump_columns));
 }
 
 }  // namespace
@@ -108,13 +97,12 @@ Deposit collapse_column(const ColumnSpec& spec, const std::filesystem::path& fol
   if (!(status >> word >> mean_speed >> deposit.collapse_time) || word != "collapse")
     throw std::runtime_error(
         fmt::format("{}: LAMMPS did not report the collapse", (folder / "collapse_status.txt").string()));
-  const double rest_speed =
-      spec.rest_speed_fraction * std::sqrt(spec.gravity * spec.grain_sizes.mean_diameter());
-  if (!(mean_speed < rest_speed))
+  const double rest = rest_speed(spec.rest_speed_fraction, spec.gravity, spec.grain_sizes.mean_diameter());
+  if (!(mean_speed < rest))
     throw std::runtime_error(
         fmt::format("the column did not come to rest within {} steps (mean grain speed {:g} m/s, "
                     "at rest below {:g} m/s); see {}",
-                    max_steps, mean_speed, rest_speed, (folder / "collapse.log").string()));
+                    max_steps, mean_speed, rest, (folder / "collapse.log").string()));
   deposit.grains = read_lammps_dump(folder / "deposit.dump");
   deposit.profile = surface_profile(deposit.grains, spec.floor_length, spec.grain_sizes.max_diameter);
   deposit.flank = flank_slope(deposit.profile, 0.2, 0.8);

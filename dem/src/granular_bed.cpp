@@ -14,6 +14,7 @@
 #include "craterkit/common/checks.hpp"
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/dem/lammps_process.hpp"
+#include "granular_script.hpp"
 
 namespace craterkit::dem {
 
@@ -61,33 +62,19 @@ double top_of(const Grains& grains) {
 
 // The settling script: settle, remove every grain whose centre lies above the depth, settle again, dump.
 std::string settle_script(const BedSpec& spec, double time_step, long max_steps) {
-  const std::string model =
+  GranularScript script;
+  script.title = "craterkit: a granular bed settled under gravity (docs/dem.md, \"Settled bed\")";
+  script.boundary = "p p fm";
+  script.data_file = "grains.data";
+  script.contact_model =
       lammps_contact_model(spec.contact, spec.grain_sizes.mean_diameter(), spec.grain_density);
-  const double rest_speed =
-      spec.rest_speed_fraction * std::sqrt(spec.gravity * spec.grain_sizes.mean_diameter());
-  const long check_every = std::max(100L, max_steps / 1000);
-  return fmt::format(R"(# craterkit: a granular bed settled under gravity (docs/dem.md, "Settled bed")
-units si
-atom_style sphere
-atom_modify map array
-boundary p p fm
-newton off
-comm_modify vel yes
-read_data grains.data
-pair_style granular
-pair_coeff * * {model}
-fix floor all wall/gran granular {model} zplane 0.0 NULL
-fix gravity all gravity {gravity:.17g} vector 0 0 -1
-fix move all nve/sphere
-neighbor {skin:.17g} bin
-neigh_modify delay 0
-timestep {dt:.17g}
-variable speed atom sqrt(vx*vx+vy*vy+vz*vz)
-compute mean_speed all reduce ave v_speed
-variable mean_speed equal c_mean_speed
-thermo {check}
-thermo_style custom step atoms ke v_mean_speed
-fix rest all halt {check} v_mean_speed < {rest:.17g} error continue
+  script.gravity = spec.gravity;
+  script.skin = 0.25 * spec.grain_sizes.max_diameter;
+  script.time_step = time_step;
+  script.check_every = rest_check_interval(max_steps);
+  const double rest = rest_speed(spec.rest_speed_fraction, spec.gravity, spec.grain_sizes.mean_diameter());
+  return granular_script_start(script) +
+         fmt::format(R"(fix rest all halt {check} v_mean_speed < {rest:.17g} error continue
 run {steps}
 print "first_settle ${{mean_speed}}" file settle_status.txt
 region above block INF INF INF INF {depth:.17g} INF units box
@@ -99,9 +86,7 @@ run {steps}
 print "second_settle ${{mean_speed}}" append settle_status.txt
 write_dump all custom bed.dump {columns} modify sort id format float %.17g
 )",
-                     fmt::arg("model", model), fmt::arg("gravity", spec.gravity),
-                     fmt::arg("skin", 0.25 * spec.grain_sizes.max_diameter), fmt::arg("dt", time_step),
-                     fmt::arg("check", check_every), fmt::arg("rest", rest_speed),
+                     fmt::arg("check", script.check_every), fmt::arg("rest", rest),
                      fmt::arg("steps", max_steps), fmt::arg("depth", spec.depth),
                      fmt::arg("columns", dump_columns));
 }
@@ -198,19 +183,18 @@ SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder) 
   std::filesystem::remove(folder / "settle_status.txt");
   run_lammps({folder, "settle.in", spec.processes});
   const auto status = read_status(folder / "settle_status.txt");
-  const double rest_speed =
-      spec.rest_speed_fraction * std::sqrt(spec.gravity * spec.grain_sizes.mean_diameter());
+  const double rest = rest_speed(spec.rest_speed_fraction, spec.gravity, spec.grain_sizes.mean_diameter());
   for (const char* stage : {"first_settle", "second_settle"}) {
     const auto found = status.find(stage);
     if (found == status.end())
       throw std::runtime_error(
           fmt::format("{}: LAMMPS did not report {}", (folder / "settle_status.txt").string(), stage));
-    if (!(found->second < rest_speed))
+    if (!(found->second < rest))
       throw std::runtime_error(
           fmt::format("the bed did not come to rest within {} steps ({}: mean grain speed {:g} m/s, at rest "
                       "below {:g} m/s); "
                       "see {}",
-                      max_steps, stage, found->second, rest_speed, (folder / "settle.log").string()));
+                      max_steps, stage, found->second, rest, (folder / "settle.log").string()));
   }
   SettledBed bed = describe(spec, read_lammps_dump(folder / "bed.dump"));
   if (bed.surface_height < spec.depth - spec.grain_sizes.max_diameter)

@@ -43,6 +43,15 @@ std::string error_in_log(const std::filesystem::path& log) {
   return {};
 }
 
+// The last non-empty line a failed program wrote to its error file (mpirun says there why it did not start).
+std::string last_line_of(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t") != std::string::npos) last = line;
+  return last;
+}
+
 }  // namespace
 
 std::filesystem::path find_lammps() {
@@ -89,7 +98,10 @@ void run_lammps(const LammpsRun& run) {
   const ExitStatus status = wait_child(spawn_child(in_folder));
   if (!status.success()) {
     std::string reason = error_in_log(log);
-    if (reason.empty()) reason = fmt::format("LAMMPS ended with {}", status.describe());
+    if (reason.empty()) {
+      reason = fmt::format("{} ended with {}", command.program.filename().string(), status.describe());
+      if (const std::string said = last_line_of(command.stderr_file); !said.empty()) reason += ": " + said;
+    }
     throw std::runtime_error(fmt::format("LAMMPS run {} failed: {} (log {})",
                                          (run.folder / run.script_name).string(), reason, log.string()));
   }

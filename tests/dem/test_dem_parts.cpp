@@ -163,6 +163,35 @@ TEST(LammpsProcess, AFailedRunQuotesTheLammpsErrorAndItsLog) {
   }
 }
 
+TEST(LammpsProcess, AProgramThatFailsWithoutALogIsQuotedFromItsErrorOutput) {
+  const TestFolder folder;
+  const auto fake = folder.path() / "fake_lmp";
+  std::ofstream(fake) << "#!/bin/sh\necho 'not enough slots available' >&2\nexit 3\n";
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  std::ofstream(folder.path() / "any.in") << "units si\n";
+  ::setenv("CRATERKIT_LAMMPS", fake.c_str(), 1);
+  std::string what;
+  try {
+    run_lammps({folder.path(), "any.in", 1});
+  } catch (const std::runtime_error& e) {
+    what = e.what();
+  }
+  ::setenv("CRATERKIT_LAMMPS", (folder.path() / "missing").c_str(), 1);
+  std::string missing;
+  try {
+    (void)find_lammps();
+  } catch (const std::runtime_error& e) {
+    missing = e.what();
+  }
+  ::unsetenv("CRATERKIT_LAMMPS");
+  EXPECT_NE(what.find("fake_lmp ended with exit status 3: not enough slots available"), std::string::npos)
+      << what;
+  EXPECT_NE(missing.find("CRATERKIT_LAMMPS=" + (folder.path() / "missing").string() +
+                         ": not an executable program"),
+            std::string::npos)
+      << missing;
+}
+
 TEST(SettledBedKey, EveryDefiningValueChangesTheHashButTheProcessCountDoesNot) {
   const BedSpec base;
   const std::string hash = bed_hash(base);
