@@ -41,6 +41,17 @@ double hertz_contact_time(const GrainContact& contact, double diameter, double g
          std::pow(reduced_mass * reduced_mass / (reduced_radius * modulus * modulus * impact_speed), 0.2);
 }
 
+double youngs_modulus_for_overlap(double bulk_density, double grain_density, double gravity, double depth,
+                                  double diameter, double poisson_ratio, double overlap_fraction) {
+  constexpr double coordination = 5.0;
+  const double pressure = bulk_density * gravity * depth;
+  const double packing_fraction = bulk_density / grain_density;
+  const double force = std::numbers::pi * diameter * diameter * pressure / (packing_fraction * coordination);
+  const double overlap = overlap_fraction * diameter;
+  const double effective = 3.0 * force / (4.0 * std::sqrt(0.25 * diameter) * std::pow(overlap, 1.5));
+  return 2.0 * (1.0 - poisson_ratio * poisson_ratio) * effective;
+}
+
 std::string lammps_contact_model(const GrainContact& contact, double diameter, double grain_density) {
   // Rolling spring: the linear stiffness of the Hertz contact of two such grains under their own weight's
   // order of overlap, delta = 1e-3 d (k_n = 2 E* sqrt(R* delta), Johnson 1985 eq. 4.23 differentiated), times

@@ -60,6 +60,22 @@ TEST(GrainContact, HertzContactTimeFollowsItsScaling) {
   EXPECT_NEAR(hertz_contact_time(contact, 0.01, 2500, 1.0) / t1, std::pow(32.0, -0.4), 1e-12);
 }
 
+TEST(GrainContact, ModulusForAnOverlapGivesThatHertzOverlap) {
+  // f = pi d^2 P / (phi Z), delta = (3 f / (4 E* sqrt(d/4)))^(2/3): the modulus returned reproduces the
+  // overlap.
+  const double d = 0.4, rho_b = 1200, rho_g = 2400, g = 1.4e-4, depth = 7.0, nu = 0.25;
+  const double modulus = youngs_modulus_for_overlap(rho_b, rho_g, g, depth, d, nu, 1e-3);
+  const double force = std::numbers::pi * d * d * rho_b * g * depth / (0.5 * 5.0);
+  const double effective = modulus / (2.0 * (1.0 - nu * nu));
+  const double overlap = std::pow(3.0 * force / (4.0 * effective * std::sqrt(0.25 * d)), 2.0 / 3.0);
+  EXPECT_NEAR(overlap / d, 1e-3, 1e-15);
+  // Ten times the load needs 10 times the modulus for the same overlap; a tenth of the overlap 10^1.5 times
+  // it.
+  EXPECT_NEAR(youngs_modulus_for_overlap(rho_b, rho_g, 10 * g, depth, d, nu, 1e-3) / modulus, 10.0, 1e-12);
+  EXPECT_NEAR(youngs_modulus_for_overlap(rho_b, rho_g, g, depth, d, nu, 1e-4) / modulus, std::pow(10.0, 1.5),
+              1e-9);
+}
+
 TEST(GrainContact, ModelCarriesEveryFrictionToLammps) {
   GrainContact contact;
   contact.sliding_friction = 0.61;

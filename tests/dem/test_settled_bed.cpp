@@ -52,6 +52,39 @@ TEST(SettledBed, RestsAtTheDepthPackedAsFrictionalSpheresPack) {
   }
   std::printf("settled bed: %zu grains, surface %.4f m, packing fraction %.4f, bulk density %.1f kg/m^3\n",
               bed.grains.size(), bed.surface_height, bed.packing_fraction, bed.bulk_density);
+
+  // The contacts carry the bed's weight as Hertz overlaps: the mean overlap of the grains in the middle slab
+  // (z from 0.4 to 0.6 of the depth), put into youngs_modulus_for_overlap with the slab's depth below the
+  // surface, gives back the modulus the bed was settled with (a mean-field relation: within 25 %, i.e. the
+  // overlaps within about 15 %).
+  const auto& g = bed.grains;
+  double overlap_sum = 0;
+  int contacts = 0;
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (g.z[i] < 0.4 * spec.depth || g.z[i] >= 0.6 * spec.depth) continue;
+    for (std::size_t j = 0; j < g.size(); ++j) {
+      if (j == i) continue;
+      double dx = g.x[j] - g.x[i];
+      double dy = g.y[j] - g.y[i];
+      dx -= spec.length_x * std::round(dx / spec.length_x);
+      dy -= spec.length_y * std::round(dy / spec.length_y);
+      const double dz = g.z[j] - g.z[i];
+      const double overlap = 0.5 * (g.diameter[i] + g.diameter[j]) - std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (overlap > 0) {
+        overlap_sum += overlap / g.diameter[i];
+        ++contacts;
+      }
+    }
+  }
+  ASSERT_GT(contacts, 500);
+  const double mean_overlap = overlap_sum / contacts;
+  const double modulus = youngs_modulus_for_overlap(
+      bed.bulk_density, spec.grain_density, spec.gravity, bed.surface_height - 0.5 * spec.depth,
+      spec.grain_sizes.mean_diameter(), spec.contact.poisson_ratio, mean_overlap);
+  std::printf(
+      "middle slab: %d contacts, mean overlap %.3e d -> Young's modulus %.3e Pa (settled with %.3e)\n",
+      contacts, mean_overlap, modulus, spec.contact.youngs_modulus);
+  EXPECT_NEAR(modulus / spec.contact.youngs_modulus, 1.0, 0.25);
 }
 
 TEST(SettledBed, IsCachedUnderItsKeyAndReadBackUnchanged) {

@@ -28,6 +28,15 @@ void check_grain_contact(const GrainContact& contact, std::string_view table);
 [[nodiscard]] double hertz_contact_time(const GrainContact& contact, double diameter, double grain_density,
                                         double impact_speed);
 
+// The Young's modulus at which the contacts at the floor of a bed overlap by `overlap_fraction` of a grain
+// diameter under the bed's weight: the vertical stress P = rho_b g H is carried by contact forces of mean
+// f = pi d^2 P / (phi Z) (the stress-force relation of a random packing, Rothenburg & Bathurst 1989,
+// Geotechnique 39, 601; phi = rho_b / rho_grain, coordination number Z = 5), and the Hertz overlap of equal
+// grains is delta = (3 f / (4 E* sqrt(d/4)))^(2/3), solved for E. How soft grains may be (docs/dem.md).
+[[nodiscard]] double youngs_modulus_for_overlap(double bulk_density, double grain_density, double gravity,
+                                                double depth, double diameter, double poisson_ratio,
+                                                double overlap_fraction);
+
 // The pair and wall model of LAMMPS's `granular` styles for this contact (the arguments after
 // `pair_coeff * *` or `fix wall/gran ... granular`), with the rolling spring set for grains of this diameter.
 [[nodiscard]] std::string lammps_contact_model(const GrainContact& contact, double diameter,
