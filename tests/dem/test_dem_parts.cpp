@@ -17,12 +17,10 @@
 #include "craterkit/dem/lammps_files.hpp"
 #include "craterkit/dem/lammps_process.hpp"
 #include "craterkit/dem/repose_calibration.hpp"
-#include "dem/dem_test_folder.hpp"
+#include "sph_core/test_io_scratch_directory.hpp"
 
 namespace craterkit::dem {
 namespace {
-
-using testing::TestFolder;
 
 std::string input_error_of(const auto& call) {
   try {
@@ -104,7 +102,7 @@ Grains some_grains(std::size_t n) {
 }
 
 TEST(LammpsFiles, LammpsReadsTheDataFileAndItsDumpReadsBackTheSameGrains) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const Grains grains = some_grains(50);
   write_lammps_data(folder.path() / "grains.data", grains, Box{0, 0.2, 0, 0.2, 0, 0.25});
   {
@@ -132,7 +130,7 @@ TEST(LammpsProcess, RunsUnderMpirunOverTwoProcesses) {
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
   ::setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
   ::setenv("OMPI_MCA_btl_vader_single_copy_mechanism", "none", 0);
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const Grains grains = some_grains(40);
   write_lammps_data(folder.path() / "grains.data", grains, Box{0, 0.2, 0, 0.2, 0, 0.25});
   std::ofstream(folder.path() / "copy.in")
@@ -149,7 +147,7 @@ TEST(LammpsProcess, RunsUnderMpirunOverTwoProcesses) {
 }
 
 TEST(LammpsFiles, ADumpWithOtherColumnsIsRefusedNamingFileAndLine) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const auto path = folder.path() / "other.dump";
   std::ofstream(path)
       << "ITEM: TIMESTEP\n0\nITEM: NUMBER OF ATOMS\n1\nITEM: BOX BOUNDS pp pp pp\n0 1\n0 1\n0 1\n"
@@ -166,7 +164,7 @@ TEST(LammpsFiles, ADumpWithOtherColumnsIsRefusedNamingFileAndLine) {
 }
 
 TEST(LammpsProcess, AFailedRunQuotesTheLammpsErrorAndItsLog) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   std::ofstream(folder.path() / "bad.in") << "units si\natom_style no_such_style\n";
   try {
     run_lammps({folder.path(), "bad.in", 1});
@@ -180,7 +178,7 @@ TEST(LammpsProcess, AFailedRunQuotesTheLammpsErrorAndItsLog) {
 }
 
 TEST(LammpsProcess, AProgramThatFailsWithoutALogIsQuotedFromItsErrorOutput) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const auto fake = folder.path() / "fake_lmp";
   std::ofstream(fake) << "#!/bin/sh\necho 'not enough slots available' >&2\nexit 3\n";
   std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
@@ -277,7 +275,7 @@ TEST(PileProfile, AHeapOfGrainsOnAKnownSlopeGivesThatAngle) {
 }
 
 TEST(ReposeCalibration, ReadsTheTableAndInvertsItBetweenRows) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const auto path = folder.path() / "calibration.csv";
   std::ofstream(path)
       << "# piles\nsliding_friction,rolling_friction,angle_degrees\n0.85,0.05,25\n0.85,0.1,30\n"
@@ -294,7 +292,7 @@ TEST(ReposeCalibration, ReadsTheTableAndInvertsItBetweenRows) {
 }
 
 TEST(ReposeCalibration, ATableWithoutAUniqueInverseIsRefusedNamingItsLine) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const auto path = folder.path() / "calibration.csv";
   std::ofstream(path) << "sliding_friction,rolling_friction,angle_degrees\n0.85,0.05,25\n0.85,0.1,24\n";
   try {

@@ -9,7 +9,7 @@
 
 #include "craterkit/dem/column_collapse.hpp"
 #include "craterkit/dem/repose_calibration.hpp"
-#include "dem/dem_test_folder.hpp"
+#include "sph_core/test_io_scratch_directory.hpp"
 
 namespace craterkit::dem {
 namespace {
@@ -20,7 +20,7 @@ double repose_angle_degrees(double friction) {
 }
 
 void expect_pile_at_repose_angle(double friction) {
-  const testing::TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const ReposeCalibration table = shipped_repose_calibration();
   const double theta = repose_angle_degrees(friction);
   ColumnSpec spec;

@@ -6,12 +6,10 @@
 #include <cmath>
 
 #include "craterkit/dem/granular_bed.hpp"
-#include "dem/dem_test_folder.hpp"
+#include "sph_core/test_io_scratch_directory.hpp"
 
 namespace craterkit::dem {
 namespace {
-
-using testing::TestFolder;
 
 BedSpec small_bed() {
   BedSpec spec;
@@ -25,7 +23,7 @@ BedSpec small_bed() {
 }
 
 TEST(SettledBed, RestsAtTheDepthPackedAsFrictionalSpheresPack) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   const BedSpec spec = small_bed();
   const SettledBed bed = settle_bed(spec, folder.path());
   ASSERT_GT(bed.grains.size(), 1000U);
@@ -88,7 +86,7 @@ TEST(SettledBed, RestsAtTheDepthPackedAsFrictionalSpheresPack) {
 }
 
 TEST(SettledBed, IsCachedUnderItsKeyAndReadBackUnchanged) {
-  const TestFolder folder;
+  const test::ScratchDirectory folder("dem");
   BedSpec spec = small_bed();
   spec.length_x = spec.length_y = 0.06;
   spec.depth = 0.05;
