@@ -123,30 +123,4 @@ SurfaceProfile surface_profile(const Grains& grains, double length, double cell)
   return profile;
 }
 
-FlankFit flank_slope(const SurfaceProfile& profile, double lower, double upper) {
-  std::size_t peak = 0;
-  for (std::size_t c = 0; c < profile.height.size(); ++c)
-    if (profile.height[c] > profile.height[peak]) peak = c;
-  const double top = profile.height[peak];
-  double sx = 0, sz = 0, sxx = 0, sxz = 0;
-  FlankFit fit;
-  for (std::size_t c = peak; c < profile.height.size(); ++c) {
-    const double z = profile.height[c];
-    if (z < lower * top || z > upper * top) continue;
-    sx += profile.x[c];
-    sz += z;
-    sxx += profile.x[c] * profile.x[c];
-    sxz += profile.x[c] * z;
-    ++fit.columns;
-  }
-  if (fit.columns < 3) {
-    fit.columns = 0;
-    return fit;
-  }
-  const double n = fit.columns;
-  const double slope = (n * sxz - sx * sz) / (n * sxx - sx * sx);
-  fit.angle_degrees = std::atan(-slope) * 180.0 / std::numbers::pi;
-  return fit;
-}
-
 }  // namespace craterkit::dem

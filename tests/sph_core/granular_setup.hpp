@@ -21,6 +21,7 @@
 #include <numbers>
 #include <vector>
 
+#include "craterkit/common/flank_slope.hpp"
 #include "craterkit/sph/run/standard_problem_config.hpp"
 #include "sph_core/solid_test_setups.hpp"
 
@@ -148,14 +149,15 @@ inline ProblemSetup make_block(const BlockSetup& s, const StandardProblemConfig&
   return problem;
 }
 
+// The profile and its flank fit are common/flank_slope.hpp's, shared with the DEM piles.
+using craterkit::flank_slope;
+using craterkit::FlankFit;
+using craterkit::SurfaceProfile;
+
 // Free-surface height per column of width dx along x (over all y), from the highest moving particle:
 // z_s = z_max + dx/2 (the top particle centre lies half a spacing below the surface). Columns holding
 // fewer than half a layer (across_cells/2 particles) count as empty (z_s = 0): stray grains do not make
 // a surface.
-struct SurfaceProfile {
-  std::vector<double> x, height;  // column centres and z_s, m
-};
-
 inline SurfaceProfile surface_profile(const Particles& p, const BlockSetup& s) {
   const double dx = s.spacing;
   const int columns = s.floor_cells;
@@ -182,41 +184,6 @@ inline double runout(const SurfaceProfile& profile, double dx) {
   for (std::size_t c = 0; c < profile.x.size(); ++c)
     if (profile.height[c] > 0.0) front = profile.x[c] + 0.5 * dx;
   return front;
-}
-
-// Slope of the flank: least-squares line z_s = a + b x through the columns whose height lies between
-// lower and upper fractions of the highest column, on the falling side (x beyond the highest column).
-// Returns the angle atan(-b) in degrees and the number of columns used.
-struct SlopeFit {
-  double angle_degrees = NAN;
-  int columns = 0;
-  double x_begin = 0.0, x_end = 0.0;  // m, range of the fitted columns
-};
-
-inline SlopeFit flank_slope(const SurfaceProfile& profile, double lower, double upper) {
-  std::size_t peak = 0;
-  for (std::size_t c = 0; c < profile.height.size(); ++c)
-    if (profile.height[c] > profile.height[peak]) peak = c;
-  const double top = profile.height[peak];
-  double sx = 0, sz = 0, sxx = 0, sxz = 0;
-  SlopeFit fit;
-  for (std::size_t c = peak; c < profile.height.size(); ++c) {
-    const double z = profile.height[c];
-    if (z < lower * top || z > upper * top) continue;
-    const double x = profile.x[c];
-    if (fit.columns == 0) fit.x_begin = x;
-    fit.x_end = x;
-    sx += x;
-    sz += z;
-    sxx += x * x;
-    sxz += x * z;
-    ++fit.columns;
-  }
-  if (fit.columns < 3) return fit;
-  const double n = fit.columns;
-  const double b = (n * sxz - sx * sz) / (n * sxx - sx * sx);
-  fit.angle_degrees = std::atan(-b) * 180.0 / std::numbers::pi;
-  return fit;
 }
 
 // Root-mean-square speed of the granular particles, m/s: "at rest" is judged on it, so that a single

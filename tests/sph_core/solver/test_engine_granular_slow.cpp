@@ -63,7 +63,7 @@ BlockSetup half_column(double friction) {
 }
 
 struct CollapseResult {
-  SlopeFit flank;
+  FlankFit flank;
   double runout_ratio;  // (L - L0)/L0
 };
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "craterkit/common/flank_slope.hpp"
 #include "craterkit/dem/grain_contact.hpp"
 #include "craterkit/dem/grain_sizes.hpp"
 #include "craterkit/dem/grains.hpp"
@@ -30,16 +31,6 @@ struct ColumnSpec {
   int processes = 1;
 };
 
-struct SurfaceProfile {
-  std::vector<double> x;       // column centres, m
-  std::vector<double> height;  // highest grain top in the column (z + d/2), 0 when the column is empty
-};
-
-struct FlankFit {
-  double angle_degrees = 0;
-  int columns = 0;  // profile columns in the fit
-};
-
 struct Deposit {
   Grains grains;
   SurfaceProfile profile;
@@ -53,9 +44,5 @@ struct Deposit {
 
 // The surface profile over 0 <= x < length in columns `cell` wide.
 [[nodiscard]] SurfaceProfile surface_profile(const Grains& grains, double length, double cell);
-
-// The least-squares line through the profile's columns from its highest column outwards whose heights lie
-// between lower and upper times the highest; its angle below the horizontal (0 columns: fewer than 3 fitted).
-[[nodiscard]] FlankFit flank_slope(const SurfaceProfile& profile, double lower, double upper);
 
 }  // namespace craterkit::dem
