@@ -52,6 +52,25 @@ double youngs_modulus_for_overlap(double bulk_density, double grain_density, dou
   return 2.0 * (1.0 - poisson_ratio * poisson_ratio) * effective;
 }
 
+double youngs_modulus_for_impact(double diameter, double grain_density, double impact_speed,
+                                 double poisson_ratio, double overlap_fraction) {
+  const double mass = grain_density * std::numbers::pi * diameter * diameter * diameter / 6.0;
+  const double overlap = overlap_fraction * diameter;
+  const double reduced_modulus = 15.0 * 0.5 * mass * impact_speed * impact_speed /
+                                 (16.0 * std::sqrt(0.25 * diameter) * std::pow(overlap, 2.5));
+  return 2.0 * (1.0 - poisson_ratio * poisson_ratio) * reduced_modulus;
+}
+
+double hertz_elastic_energy(const GrainContact& contact, double reduced_radius, double overlap) {
+  return 8.0 / 15.0 * effective_modulus(contact) * std::sqrt(reduced_radius) * std::pow(overlap, 2.5);
+}
+
+GrainContact frictionless_wall(GrainContact contact) {
+  contact.sliding_friction = 0.0;
+  contact.rolling_friction = 0.0;
+  return contact;
+}
+
 std::string lammps_contact_model(const GrainContact& contact, double diameter, double grain_density) {
   // Rolling spring: the linear stiffness of the Hertz contact of two such grains under their own weight's
   // order of overlap, delta = 1e-3 d (k_n = 2 E* sqrt(R* delta), Johnson 1985 eq. 4.23 differentiated), times

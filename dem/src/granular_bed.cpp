@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <map>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/checks.hpp"
@@ -46,10 +48,15 @@ Grains loose_lattice(const BedSpec& spec, std::mt19937_64& random) {
   for (long n = 0; n < wanted; ++n) {
     const long layer = n / (nx * ny);
     const long in_layer = n % (nx * ny);
-    const double x = (static_cast<double>(in_layer % nx) + 0.5 + jitter(random)) * sx;
-    const double y = (static_cast<double>(in_layer / nx) + 0.5 + jitter(random)) * sy;
+    double x = (static_cast<double>(in_layer % nx) + 0.5 + jitter(random)) * sx;
+    double y = (static_cast<double>(in_layer / nx) + 0.5 + jitter(random)) * sy;
     const double z = (static_cast<double>(layer) + 0.5) * sz;
-    grains.add(x, y, z, spec.grain_sizes.draw(random), spec.grain_density);
+    const double d = spec.grain_sizes.draw(random);
+    if (spec.side_walls) {  // no grain may start through a wall
+      x = std::clamp(x, 0.5 * d, spec.length_x - 0.5 * d);
+      y = std::clamp(y, 0.5 * d, spec.length_y - 0.5 * d);
+    }
+    grains.add(x, y, z, d, spec.grain_density);
   }
   return grains;
 }
@@ -64,10 +71,18 @@ double top_of(const Grains& grains) {
 std::string settle_script(const BedSpec& spec, double time_step, long max_steps) {
   GranularScript script;
   script.title = "craterkit: a granular bed settled under gravity (docs/dem.md, \"Settled bed\")";
-  script.boundary = "p p fm";
+  script.boundary = spec.side_walls ? "f f fm" : "p p fm";
   script.data_file = "grains.data";
   script.contact_model =
       lammps_contact_model(spec.contact, spec.grain_sizes.mean_diameter(), spec.grain_density);
+  if (spec.side_walls) {
+    const std::string frictionless = lammps_contact_model(
+        frictionless_wall(spec.contact), spec.grain_sizes.mean_diameter(), spec.grain_density);
+    script.extra_fixes = fmt::format(
+        "fix side_x all wall/gran granular {model} xplane 0.0 {x:.17g}\n"
+        "fix side_y all wall/gran granular {model} yplane 0.0 {y:.17g}\n",
+        fmt::arg("model", frictionless), fmt::arg("x", spec.length_x), fmt::arg("y", spec.length_y));
+  }
   script.gravity = spec.gravity;
   script.skin = 0.25 * spec.grain_sizes.max_diameter;
   script.time_step = time_step;
@@ -102,7 +117,7 @@ std::map<std::string, double> read_status(const std::filesystem::path& path) {
 
 SettledBed describe(const BedSpec& spec, Grains grains) {
   // LAMMPS maps a grain that crossed a periodic side back into the box only when it rebuilds its lists.
-  for (std::size_t i = 0; i < grains.size(); ++i) {
+  for (std::size_t i = 0; i < grains.size() && !spec.side_walls; ++i) {
     grains.x[i] -= spec.length_x * std::floor(grains.x[i] / spec.length_x);
     grains.y[i] -= spec.length_y * std::floor(grains.y[i] / spec.length_y);
   }
@@ -144,10 +159,11 @@ std::string bed_key(const BedSpec& spec) {
       "craterkit settled bed v1: length_x {:.17g} length_y {:.17g} depth {:.17g} min_diameter {:.17g} "
       "max_diameter {:.17g} grain_density {:.17g} youngs_modulus {:.17g} poisson_ratio {:.17g} restitution "
       "{:.17g} sliding_friction {:.17g} rolling_friction {:.17g} gravity {:.17g} seed {} rest_speed_fraction "
-      "{:.17g}",
+      "{:.17g}{}",
       spec.length_x, spec.length_y, spec.depth, spec.grain_sizes.min_diameter, spec.grain_sizes.max_diameter,
       spec.grain_density, c.youngs_modulus, c.poisson_ratio, c.restitution, c.sliding_friction,
-      c.rolling_friction, spec.gravity, spec.seed, spec.rest_speed_fraction);
+      c.rolling_friction, spec.gravity, spec.seed, spec.rest_speed_fraction,
+      spec.side_walls ? " side_walls" : "");
 }
 
 std::string bed_hash(const BedSpec& spec) {
@@ -235,6 +251,40 @@ double packing_fraction_between(const Grains& grains, const Box& box, double low
     volume += volume_below(grains.z[i], r, high) - volume_below(grains.z[i], r, low);
   }
   return volume / ((box.x_high - box.x_low) * (box.y_high - box.y_low) * (high - low));
+}
+
+double contact_elastic_energy(const Grains& grains, const GrainContact& contact) {
+  double cell = 0;
+  for (std::size_t i = 0; i < grains.size(); ++i) cell = std::max(cell, grains.diameter[i]);
+  if (grains.size() < 2) return 0.0;
+  auto index = [&](double c) { return static_cast<long>(std::floor(c / cell)); };
+  auto key = [](long a, long b, long c) {
+    constexpr long offset = 1L << 20;
+    return (static_cast<std::uint64_t>(a + offset) << 42) | (static_cast<std::uint64_t>(b + offset) << 21) |
+           static_cast<std::uint64_t>(c + offset);
+  };
+  std::map<std::uint64_t, std::vector<std::size_t>> cells;
+  for (std::size_t i = 0; i < grains.size(); ++i)
+    cells[key(index(grains.x[i]), index(grains.y[i]), index(grains.z[i]))].push_back(i);
+  double energy = 0;
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    const long cx = index(grains.x[i]), cy = index(grains.y[i]), cz = index(grains.z[i]);
+    for (long a = cx - 1; a <= cx + 1; ++a)
+      for (long b = cy - 1; b <= cy + 1; ++b)
+        for (long c = cz - 1; c <= cz + 1; ++c) {
+          const auto found = cells.find(key(a, b, c));
+          if (found == cells.end()) continue;
+          for (const std::size_t j : found->second) {
+            if (j <= i) continue;
+            const double dx = grains.x[j] - grains.x[i], dy = grains.y[j] - grains.y[i],
+                         dz = grains.z[j] - grains.z[i];
+            const double ri = 0.5 * grains.diameter[i], rj = 0.5 * grains.diameter[j];
+            const double overlap = ri + rj - std::sqrt(dx * dx + dy * dy + dz * dz);
+            if (overlap > 0) energy += hertz_elastic_energy(contact, ri * rj / (ri + rj), overlap);
+          }
+        }
+  }
+  return energy;
 }
 
 double mean_surface_height(const Grains& grains, const Box& box, double cell) {

@@ -101,6 +101,32 @@ Grains some_grains(std::size_t n) {
   return grains;
 }
 
+TEST(GrainContact, ModulusForAnImpactStoresTheImpactsEnergyAtThatOverlap) {
+  // At the largest overlap of a Hertz impact the relative motion's kinetic energy m* v^2 / 2 is all elastic
+  // energy: the modulus for an overlap and the contact's energy at that overlap agree.
+  const double d = 0.5, rho_g = 2400, speed = 0.37, nu = 0.3;
+  GrainContact contact;
+  contact.poisson_ratio = nu;
+  contact.youngs_modulus = youngs_modulus_for_impact(d, rho_g, speed, nu, 0.05);
+  const double reduced_mass = 0.5 * rho_g * std::numbers::pi * d * d * d / 6.0;
+  EXPECT_NEAR(hertz_elastic_energy(contact, 0.25 * d, 0.05 * d), 0.5 * reduced_mass * speed * speed,
+              1e-12 * reduced_mass * speed * speed);
+  // Twice the speed needs four times the modulus for the same overlap.
+  EXPECT_NEAR(youngs_modulus_for_impact(d, rho_g, 2 * speed, nu, 0.05) / contact.youngs_modulus, 4.0, 1e-12);
+}
+
+TEST(GrainContact, TheElasticEnergyOfABedIsTheSumOverItsOverlappingPairs) {
+  GrainContact contact;
+  Grains grains;
+  grains.add(0.0, 0.0, 0.0, 0.1, 2500);
+  grains.add(0.099, 0.0, 0.0, 0.1, 2500);   // overlaps the first by 1 mm
+  grains.add(0.0, 0.0, 0.0995, 0.1, 2500);  // overlaps the first by 0.5 mm, the second not
+  grains.add(0.5, 0.5, 0.5, 0.2, 2500);     // alone
+  const double expected =
+      hertz_elastic_energy(contact, 0.025, 1e-3) + hertz_elastic_energy(contact, 0.025, 5e-4);
+  EXPECT_NEAR(contact_elastic_energy(grains, contact), expected, 1e-9 * expected);
+}
+
 TEST(LammpsFiles, LammpsReadsTheDataFileAndItsDumpReadsBackTheSameGrains) {
   const test::ScratchDirectory folder("dem");
   const Grains grains = some_grains(50);
@@ -213,7 +239,7 @@ TEST(SettledBedKey, EveryDefiningValueChangesTheHashButTheProcessCountDoesNot) {
   BedSpec other = base;
   other.processes = 2;
   EXPECT_EQ(bed_hash(other), hash);
-  std::vector<BedSpec> changed(8, base);
+  std::vector<BedSpec> changed(9, base);
   changed[0].depth *= 1.0 + 1e-15;
   changed[1].grain_sizes.max_diameter *= 1.1;
   changed[2].contact.rolling_friction += 0.01;
@@ -222,6 +248,7 @@ TEST(SettledBedKey, EveryDefiningValueChangesTheHashButTheProcessCountDoesNot) {
   changed[5].seed = 2;
   changed[6].grain_density += 1;
   changed[7].length_y *= 2;
+  changed[8].side_walls = true;
   for (const auto& spec : changed) EXPECT_NE(bed_hash(spec), hash) << bed_key(spec);
 }
 

@@ -15,16 +15,16 @@
 #include <string>
 #include <vector>
 
+#include "craterkit/sph/physics/yield_strength.hpp"
 #include "sph_core/granular_setup.hpp"
 
 namespace granular_test {
 
 inline constexpr double degrees = 180.0 / std::numbers::pi;
 
-// Angle of repose from the friction coefficient, inverting f = 2 sqrt(2) sin(theta) / (3 - sin(theta))
-// (Luther et al. 2022; docs/physics.md section 2): sin(theta) = 3 f / (2 sqrt(2) + f).
+// Angle of repose from the friction coefficient (Luther et al. 2022; docs/physics.md section 2).
 inline double repose_angle_degrees(double friction) {
-  return std::asin(3.0 * friction / (2.0 * std::sqrt(2.0) + friction)) * degrees;
+  return craterkit::sph::repose_angle_from_friction(friction) * degrees;
 }
 
 struct Deposit {

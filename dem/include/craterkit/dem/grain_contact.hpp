@@ -39,6 +39,20 @@ void check_grain_contact(const GrainContact& contact, std::string_view table);
 
 // The pair and wall model of LAMMPS's `granular` styles for this contact (the arguments after
 // `pair_coeff * *` or `fix wall/gran ... granular`), with the rolling spring set for grains of this diameter.
+// The Young's modulus for which a grain hitting an equal grain at rest at `impact_speed` overlaps at most
+// overlap_fraction of its diameter: the Hertz impact's largest overlap, delta = (15 m* v^2 / (16 E*
+// sqrt(R*)))^(2/5) (Johnson 1985, sec. 11.4), solved for E* with m* = m/2, R* = d/4.
+[[nodiscard]] double youngs_modulus_for_impact(double diameter, double grain_density, double impact_speed,
+                                               double poisson_ratio, double overlap_fraction);
+
+// The elastic energy of a Hertz contact of overlap delta between grains of reduced radius R*:
+// (8/15) E* sqrt(R*) delta^(5/2), the work of F = (4/3) E* sqrt(R*) delta^(3/2).
+[[nodiscard]] double hertz_elastic_energy(const GrainContact& contact, double reduced_radius, double overlap);
+
+// The same contact without sliding and rolling friction: a wall standing for a mirror plane, along which
+// grains slide and roll freely.
+[[nodiscard]] GrainContact frictionless_wall(GrainContact contact);
+
 [[nodiscard]] std::string lammps_contact_model(const GrainContact& contact, double diameter,
                                                double grain_density);
 

@@ -1,8 +1,8 @@
 #pragma once
 // A bed of grains settled under gravity: grains dropped from a loose lattice into a box periodic in x and y
-// on a frictional floor at z = 0, settled until they rest, cut flat at the bed's depth and settled again.
-// Settling costs minutes for a large bed, so a bed is cached under a hash of everything that defines it
-// (docs/dem.md, "Settled bed").
+// (or between frictionless side walls) on a frictional floor at z = 0, settled until they rest, cut flat at
+// the bed's depth and settled again. Settling costs minutes for a large bed, so a bed is cached under a hash
+// of everything that defines it (docs/dem.md, "Settled bed").
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -15,9 +15,12 @@
 namespace craterkit::dem {
 
 struct BedSpec {
-  double length_x = 0.2;  // m, periodic
-  double length_y = 0.2;  // m, periodic
-  double depth = 0.1;     // m, the flat surface after the cut
+  double length_x = 0.2;  // m
+  double length_y = 0.2;  // m
+  // false: periodic in x and y; true: frictionless walls at x = 0, length_x and y = 0, length_y (a bed for a
+  // box whose sides x = 0 and y = 0 are mirror planes, as the late stage of a quarter-domain impact).
+  bool side_walls = false;
+  double depth = 0.1;  // m, the flat surface after the cut
   GrainSizes grain_sizes;
   double grain_density = 2500;  // kg/m^3 of the grain material
   GrainContact contact;
@@ -33,7 +36,7 @@ void check_bed_spec(const BedSpec& spec);
 
 struct SettledBed {
   Grains grains;
-  Box box;                    // x, y periodic; z from the floor up
+  Box box;                    // x, y (periodic or walled); z from the floor up
   double surface_height = 0;  // m: the mean top of the surface grains (docs/dem.md)
   // Grain volume over bed volume in the bulk: from 2 d_max above the floor to 2 d_max below the surface (the
   // layers at a wall pack looser).
@@ -54,6 +57,10 @@ struct SettledBed {
 
 // The fraction of the box's slab low <= z <= high filled by grain volume (spheres cut by the planes).
 [[nodiscard]] double packing_fraction_between(const Grains& grains, const Box& box, double low, double high);
+
+// The elastic energy stored in the overlaps of the grains' contacts with this contact law (Hertz, summed over
+// every overlapping pair; walls not counted), J.
+[[nodiscard]] double contact_elastic_energy(const Grains& grains, const GrainContact& contact);
 
 // The mean height of the surface: the box's floor cut into square columns `cell` wide, in each the highest
 // grain top (z + d/2), averaged over the columns that hold a grain.

@@ -40,6 +40,11 @@ inline double friction_from_repose_angle(double repose_angle_radians) noexcept {
   return 2.0 * std::sqrt(2.0) * s / (3.0 - s);
 }
 
+// Its inverse, sin(theta) = 3 f / (2 sqrt(2) + f), in radians; defined for 0 <= f < sqrt(2).
+inline double repose_angle_from_friction(double friction) noexcept {
+  return std::asin(3.0 * friction / (2.0 * std::sqrt(2.0) + friction));
+}
+
 // Strain weakening (docs/physics.md; cf. Collins et al. 2008): cohesion falls linearly with the accumulated
 // total strain and is lost at total_strain >= 1.
 inline double weakened_cohesion(double cohesion, double total_strain) noexcept {
