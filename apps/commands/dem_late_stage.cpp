@@ -66,7 +66,7 @@ void add_dem_late_stage_command(CLI::App& parent) {
   sub->add_option("--grain-diameter", spec.grain_diameter,
                   "Mean grain diameter, m (sizes +-10 %; default 0.5)");
   sub->add_option("--bed-length", spec.bed_length,
-                  "Bed extent along x and y from the impact point, m (default 10)");
+                  "Bed extent along x and y from the impact point, m (default: the SPH run's domain radius)");
   sub->add_option("--bed-depth", spec.bed_depth, "Bed depth below the pre-impact plane, m (default 6)");
   sub->add_option("--bed-height", spec.bed_height,
                   "Bed above the plane before carving, for raised material, m (default 2)");

@@ -46,8 +46,7 @@ constexpr double overlap_under_weight = 1e-3;  // of a diameter, at the bed's bo
 constexpr double collision_overlap = 0.05;
 
 std::string late_stage_script(const DemLateStageSpec& spec, const dem::GrainContact& contact, double gravity,
-                              double grain_density, double time_step, long steps, long dump_every,
-                              double handoff_time) {
+                              double grain_density, double time_step, long steps, long dump_every) {
   const std::string model = dem::lammps_contact_model(contact, spec.grain_diameter, grain_density);
   const std::string mirror =
       dem::lammps_contact_model(dem::frictionless_wall(contact), spec.grain_diameter, grain_density);
@@ -80,12 +79,11 @@ thermo_modify lost ignore norm no flush yes
 dump grains all custom {dump_every} dumps/grains.*.dump {columns}
 dump_modify grains sort id format float %.17g
 run {steps}
-print "late_stage_done {handoff:.17g}" file late_stage_status.txt
 )",
       fmt::arg("model", model), fmt::arg("mirror", mirror), fmt::arg("skin", 0.25 * spec.grain_diameter),
       fmt::arg("gravity", gravity), fmt::arg("dt", time_step),
       fmt::arg("thermo", std::max(1L, dump_every / 10)), fmt::arg("dump_every", dump_every),
-      fmt::arg("columns", dem::dump_columns), fmt::arg("steps", steps), fmt::arg("handoff", handoff_time));
+      fmt::arg("columns", dem::dump_columns), fmt::arg("steps", steps));
 }
 
 nlohmann::json totals_json(const MotionTotals& t) {
@@ -172,7 +170,7 @@ void run_lammps_with_progress(const dem::LammpsRun& run, long steps, double hand
 
 void check_dem_late_stage_spec(const DemLateStageSpec& spec) {
   require_positive(spec.grain_diameter, "grain_diameter");
-  require_positive(spec.bed_length, "bed_length");
+  require_non_negative(spec.bed_length, "bed_length");
   require_positive(spec.bed_depth, "bed_depth");
   require_non_negative(spec.bed_height, "bed_height");
   require_in_range(spec.repose_angle, "repose_angle", 0.0, 90.0, true, true);
@@ -181,15 +179,18 @@ void check_dem_late_stage_spec(const DemLateStageSpec& spec) {
   require_positive(spec.output_interval, "output_interval");
   require_non_negative(spec.ejecta_speed, "ejecta_speed");
   require_in_range(spec.processes, "processes", 1, 4096);
+  // bed_length 0: the SPH run's domain radius, checked once it is known.
   for (const auto& [name, length] :
-       {std::pair{"bed_length", spec.bed_length}, std::pair{"bed_depth", spec.bed_depth}})
+       {std::pair{"bed_length", spec.bed_length > 0.0 ? spec.bed_length : 10.0 * spec.grain_diameter},
+        std::pair{"bed_depth", spec.bed_depth}})
     if (length < 10.0 * spec.grain_diameter)
       throw InputError(fmt::format("{}: value {:g} m is under 10 grains ({:g} m each): allowed >= {:g} m",
                                    name, length, spec.grain_diameter, 10.0 * spec.grain_diameter));
 }
 
-DemLateStageResult run_dem_late_stage(const DemLateStageSpec& spec, const std::filesystem::path& out,
+DemLateStageResult run_dem_late_stage(const DemLateStageSpec& requested, const std::filesystem::path& out,
                                       const std::function<void(const std::string&)>& progress) {
+  DemLateStageSpec spec = requested;
   check_dem_late_stage_spec(spec);
   auto say = [&](const std::string& line) {
     if (progress) progress(line);
@@ -215,6 +216,10 @@ DemLateStageResult run_dem_late_stage(const DemLateStageSpec& spec, const std::f
   if (!(spec.end_time > result.handoff_time))
     throw InputError(fmt::format("end_time: value {:g} s is not after the hand-off time {:g} s",
                                  spec.end_time, result.handoff_time));
+  if (spec.bed_length == 0.0) {
+    spec.bed_length = record.domain_radius;
+    check_dem_late_stage_spec(spec);
+  }
   const double ejecta_speed = spec.ejecta_speed > 0.0 ? spec.ejecta_speed : record.escape_speed;
   if (!(ejecta_speed > 0.0))
     throw InputError("ejecta_speed: the run has no escape speed; give one (m/s, > 0)");
@@ -375,7 +380,7 @@ DemLateStageResult run_dem_late_stage(const DemLateStageSpec& spec, const std::f
     dem::write_lammps_data(folder / "grains.data", handoff.grains, box, handoff.roles);
     write_atomically(folder / "late_stage.in", [&](const std::filesystem::path& tmp) {
       std::ofstream(tmp) << late_stage_script(spec, run_contact, record.gravity, result.grain_density,
-                                              result.time_step, steps, dump_every, result.handoff_time);
+                                              result.time_step, steps, dump_every);
     });
     say(fmt::format("dem: LAMMPS on {} process(es): {} grains, {} steps of {:.3g} s to t = {:g} s ({})",
                     spec.processes, handoff.grains.size(), steps, result.time_step,

@@ -40,8 +40,10 @@ TEST(DemLateStageInput, RefusesBadValuesMissingFilesAndRunsItCannotContinue) {
   EXPECT_NE(refusal(spec, out).find("missing.h5"), std::string::npos);
 
   spec.grain_diameter = 2.0;  // a 10 m bed would be 5 grains wide
+  spec.bed_length = 10.0;
   EXPECT_NE(refusal(spec, out).find("bed_length"), std::string::npos);
   spec.grain_diameter = 0.5;
+  spec.bed_length = 0.0;  // the run's domain radius
   spec.restitution = 0.0;
   EXPECT_NE(refusal(spec, out).find("restitution"), std::string::npos);
   spec.restitution = 0.5;
@@ -56,6 +58,7 @@ TEST(DemLateStageInput, RefusesBadValuesMissingFilesAndRunsItCannotContinue) {
   record.initial_bulk_density = 1300.0;
   record.gravity = 1.0;
   record.escape_speed = 1.0;
+  record.domain_radius = 15.0;
   spec.snapshot = scratch.path() / "full.h5";
   sph::write_snapshot(spec.snapshot, one_particle(), impact::run_record_attributes(record));
   EXPECT_NE(refusal(spec, out).find("quarter"), std::string::npos);
@@ -67,6 +70,11 @@ TEST(DemLateStageInput, RefusesBadValuesMissingFilesAndRunsItCannotContinue) {
   spec.repose_angle = 29.24;
   spec.end_time = 0.0;
   EXPECT_NE(refusal(spec, out).find("end_time"), std::string::npos);
+  // A domain too small for ten grains across.
+  spec.end_time = 500.0;
+  record.domain_radius = 3.0;
+  sph::write_snapshot(spec.snapshot, one_particle(), impact::run_record_attributes(record));
+  EXPECT_NE(refusal(spec, out).find("bed_length: value 3 m"), std::string::npos);
 }
 
 }  // namespace

@@ -1,7 +1,9 @@
 #pragma once
 // An impact's late stage as a granular DEM run by LAMMPS, from an SPH snapshot of a quarter-domain impact run
 // at the hand-off time (docs/dem.md, "Late stage"):
-//   - a bed of grains (diameters uniform within +-10 % of `grain_diameter`) in the box x, y in [0, L],
+//   - a bed of grains (diameters uniform within +-10 % of `grain_diameter`) in the box x, y in [0, L] (L the
+//   SPH
+//     run's domain radius unless given),
 //     from `bed_depth` below the pre-impact plane to `bed_height` above it, between frictionless walls,
 //     settled under the run's gravity once and cached per set-up; its grain density chosen so that its bulk
 //     density is the target's;
@@ -33,10 +35,10 @@ namespace craterkit::dem_late_stage {
 struct DemLateStageSpec {
   std::filesystem::path snapshot;  // an impact run's snapshot (or checkpoint) at the hand-off time
   double grain_diameter = 0.5;     // m, the mean; sizes uniform within +-10 %
-  double bed_length = 10.0;        // m, L: the bed's extent along x and along y from the impact point
-  double bed_depth = 6.0;          // m below the pre-impact plane
-  double bed_height = 2.0;         // m above it before carving (room for the material the SPH stage raised)
-  double repose_angle = 29.24;     // degrees, of the SPH material (theta(f) of physics.md section 2)
+  double bed_length = 0.0;      // m, L: the bed's extent along x and along y from the impact point; 0: R_dom
+  double bed_depth = 6.0;       // m below the pre-impact plane
+  double bed_height = 2.0;      // m above it before carving (room for the material the SPH stage raised)
+  double repose_angle = 29.24;  // degrees, of the SPH material (theta(f) of physics.md section 2)
   double restitution = 0.5;
   double end_time = 500.0;       // s, impact time at which LAMMPS stops
   double output_interval = 5.0;  // s between crater samples
