@@ -164,16 +164,23 @@ Handoff hand_off(const sph::Particles& sph, const dem::Grains& bed, const Handof
   const double domain_limit = spec.sph_domain_radius > 0.0 ? spec.sph_domain_radius - max_support : 0.0;
 
   // 2-4. Carve, set moving, freeze.
+  struct Neighbour {
+    std::uint32_t index;
+    double weight;
+  };
+  std::vector<Neighbour> near;  // the neighbours of one grain that weigh in its motion, kept for the fit
   sph::with_kernel(spec.kernel, [&](auto kernel) {
     for (std::size_t g = 0; g < bed.size(); ++g) {
       const double gx = bed.x[g], gy = bed.y[g], gz = bed.z[g], d = bed.diameter[g];
       double density = 0.0, weight = 0.0;
       std::array<double, 3> momentum{0.0, 0.0, 0.0}, centroid{0.0, 0.0, 0.0};
+      near.clear();
       flowing.for_each_near(gx, gy, gz, [&](std::uint32_t j) {
         const double dx = flowing.x[j] - gx, dy = flowing.y[j] - gy, dz = flowing.z[j] - gz;
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
         density += flowing.mass[j] * kernel.value(r, flowing.smoothing_length[j]);
         const double w = flowing.mass[j] * kernel.value(r, std::max(flowing.smoothing_length[j], 0.5 * d));
+        if (w > 0.0) near.push_back({j, w});
         weight += w;
         momentum[0] += w * flowing.vx[j];
         momentum[1] += w * flowing.vy[j];
@@ -202,20 +209,16 @@ Handoff hand_off(const sph::Particles& sph, const dem::Grains& bed, const Handof
       // for a linear field.
       for (auto& c : centroid) c /= weight;
       std::array<double, 9> a{}, b{};
-      flowing.for_each_near(gx, gy, gz, [&](std::uint32_t j) {
-        const double dx = flowing.x[j] - gx, dy = flowing.y[j] - gy, dz = flowing.z[j] - gz;
-        const double distance = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const std::array<double, 3> r{dx - centroid[0], dy - centroid[1], dz - centroid[2]};
-        const double w =
-            flowing.mass[j] * kernel.value(distance, std::max(flowing.smoothing_length[j], 0.5 * d));
-        if (!(w > 0.0)) return;
+      for (const auto& [j, w] : near) {
+        const std::array<double, 3> r{flowing.x[j] - gx - centroid[0], flowing.y[j] - gy - centroid[1],
+                                      flowing.z[j] - gz - centroid[2]};
         const std::array<double, 3> dv{flowing.vx[j] - v[0], flowing.vy[j] - v[1], flowing.vz[j] - v[2]};
         for (int row = 0; row < 3; ++row)
           for (int col = 0; col < 3; ++col) {
             a[3 * row + col] += w * r[row] * r[col];
             b[3 * row + col] += w * dv[row] * r[col];
           }
-      });
+      }
       const auto omega = spin_of_flow(a, b);
       const std::size_t k = out.grains.size() - 1;
       out.grains.vx[k] = v[0];
