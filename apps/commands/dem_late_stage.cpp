@@ -76,7 +76,11 @@ void add_dem_late_stage_command(CLI::App& parent) {
   sub->add_option("--repose-angle", spec.repose_angle, "The grains' angle of repose, degrees (default 29.24)")
       ->excludes(sub->get_option("--friction"));
   sub->add_option("--restitution", spec.restitution, "Normal coefficient of restitution (default 0.5)");
-  sub->add_option("--end-time", spec.end_time, "Impact time at which the late stage ends, s (default 500)");
+  sub->add_option("--end-time", spec.end_time,
+                  "Impact time at which the late stage ends at the latest, s (default 500)");
+  sub->add_flag(
+      "--stop-when-grown,!--no-stop-when-grown", spec.stop_when_grown,
+      "Stop LAMMPS at the end of crater growth (the SPH run's rule; default), or run to --end-time");
   sub->add_option("--output-interval", spec.output_interval,
                   "Simulated time between crater samples, s (default 5)");
   sub->add_option(

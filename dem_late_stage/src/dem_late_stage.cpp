@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -78,6 +79,13 @@ thermo_style custom step atoms ke
 thermo_modify lost ignore norm no flush yes
 dump grains all custom {dump_every} dumps/grains.*.dump {columns}
 dump_modify grains sort id format float %.17g
+# craterkit asks for the end at a dump once growth has ended by creating the file stop.request; every
+# process must see the same answer, so the largest over the grains of all processes decides.
+variable stop_request equal is_file(stop.request)
+variable stop_request_atom atom v_stop_request
+compute stop_request_any all reduce max v_stop_request_atom
+variable stop equal c_stop_request_any
+fix stop_when_grown all halt {dump_every} v_stop != 0 error continue
 run {steps}
 )",
       fmt::arg("model", model), fmt::arg("mirror", mirror), fmt::arg("skin", 0.25 * spec.grain_diameter),
@@ -127,35 +135,110 @@ long last_logged_step(const std::filesystem::path& log) {
   return last;
 }
 
-// Runs LAMMPS, reporting its progress every 30 s from its log.
-void run_lammps_with_progress(const dem::LammpsRun& run, long steps, double handoff_time, double time_step,
-                              const std::function<void(const std::string&)>& progress) {
+// One dump measured: its growth sample and its crater.
+struct MeasuredDump {
+  impact::CraterGrowthSample sample;
+  impact::CraterMeasurement crater;
+};
+using DumpMeasure = std::function<MeasuredDump(const std::filesystem::path&)>;
+
+// The dumps in folder, in step order.
+std::vector<std::filesystem::path> dumps_in(const std::filesystem::path& folder) {
+  std::vector<std::filesystem::path> dumps;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.path().extension() == ".dump") dumps.push_back(entry.path());
+  std::sort(dumps.begin(), dumps.end(),
+            [](const auto& a, const auto& c) { return dump_step(a) < dump_step(c); });
+  return dumps;
+}
+
+// The growth samples: the impact's first, then the measured dumps' in step order.
+std::vector<impact::CraterGrowthSample> growth_samples(const impact::CraterGrowthSample& impact,
+                                                       const std::map<long, MeasuredDump>& measured) {
+  std::vector<impact::CraterGrowthSample> samples{impact};
+  for (const auto& [step, dump] : measured) samples.push_back(dump.sample);
+  return samples;
+}
+
+// How LAMMPS is watched while it runs.
+struct LammpsWatch {
+  long steps = 0;
+  double handoff_time = 0.0, time_step = 0.0;  // s
+  impact::CraterGrowthSample impact;           // the first growth sample
+  DumpMeasure measure;
+  bool stop_when_grown = true;
+  std::function<void(const std::string&)> progress;  // may be empty
+};
+
+// Runs LAMMPS and measures each dump it has finished (a dump is finished once the next one exists) as it
+// appears. When stop_when_grown and the samples show the end of growth, the file stop.request asks LAMMPS
+// to end the run at its next dump (the script's fix halt). Progress every 30 s from its log. Returns the
+// dumps measured while it ran, by step; `stop_requested` tells whether the run was asked to end.
+std::map<long, MeasuredDump> run_lammps_watched(const dem::LammpsRun& run, const LammpsWatch& watch,
+                                                bool& stop_requested) {
+  std::map<long, MeasuredDump> measured;
+  stop_requested = false;
   std::mutex mutex;
   std::condition_variable done_signal;
   bool done = false;
-  std::thread reporter;
-  if (progress) {
-    reporter = std::thread([&] {
-      const auto start = Clock::now();
-      std::unique_lock lock(mutex);
-      while (!done_signal.wait_for(lock, std::chrono::seconds(30), [&] { return done; })) {
+  const auto dump_folder = run.folder / "dumps";
+  // Measures the finished dumps not yet measured; true once growth has ended.
+  auto measure_finished = [&] {
+    const auto dumps = dumps_in(dump_folder);
+    for (std::size_t k = 0; k + 1 < dumps.size(); ++k) {
+      const long step = dump_step(dumps[k]);
+      if (measured.count(step) != 0) continue;
+      measured.emplace(step, watch.measure(dumps[k]));
+    }
+    return impact::first_sample_of_ended_growth(growth_samples(watch.impact, measured),
+                                                impact::CraterGrowthCriteria{})
+        .has_value();
+  };
+  std::thread watcher([&] {
+    const auto start = Clock::now();
+    auto reported = start;
+    std::unique_lock lock(mutex);
+    while (!done_signal.wait_for(lock, std::chrono::seconds(2), [&] { return done; })) {
+      lock.unlock();
+      bool grown = false;
+      try {
+        grown = measure_finished();
+      } catch (const std::exception&) {
+        // A dump that cannot be read now is measured again after the run, where its error is reported.
+      }
+      if (grown && watch.stop_when_grown && !stop_requested) {
+        stop_requested = true;
+        std::ofstream(run.folder / "stop.request") << "growth ended\n";
+        if (watch.progress)
+          watch.progress(
+              fmt::format("dem: growth ended at t = {:.1f} s (R = {:.3f} m); stopping LAMMPS at its "
+                          "next dump",
+                          measured.rbegin()->second.sample.time, measured.rbegin()->second.sample.radius));
+      }
+      if (watch.progress && seconds_since(reported) >= 30.0) {
+        reported = Clock::now();
         const long step = last_logged_step(run.folder / "late_stage.log");
         const double elapsed = seconds_since(start);
         const double left =
-            step > 0 ? elapsed * static_cast<double>(steps - step) / static_cast<double>(step) : 0.0;
-        progress(fmt::format("dem: t = {:.1f} s, step {} of {}, {:.0f} s elapsed, about {:.0f} s left",
-                             handoff_time + static_cast<double>(step) * time_step, step, steps, elapsed,
-                             left));
+            step > 0 ? elapsed * static_cast<double>(watch.steps - step) / static_cast<double>(step) : 0.0;
+        const std::string radius =
+            measured.empty() ? std::string()
+                             : fmt::format(", R = {:.3f} m", measured.rbegin()->second.sample.radius);
+        watch.progress(
+            fmt::format("dem: t = {:.1f} s{}, step {} of {}, {:.0f} s elapsed, at most {:.0f} s left",
+                        watch.handoff_time + static_cast<double>(step) * watch.time_step, radius, step,
+                        watch.steps, elapsed, left));
       }
-    });
-  }
+      lock.lock();
+    }
+  });
   auto finish = [&] {
     {
       std::lock_guard lock(mutex);
       done = true;
     }
     done_signal.notify_all();
-    if (reporter.joinable()) reporter.join();
+    watcher.join();
   };
   try {
     dem::run_lammps(run);
@@ -164,6 +247,7 @@ void run_lammps_with_progress(const dem::LammpsRun& run, long steps, double hand
     throw;
   }
   finish();
+  return measured;
 }
 
 }  // namespace
@@ -350,6 +434,40 @@ DemLateStageResult run_dem_late_stage(const DemLateStageSpec& requested, const s
                      handoff_spec.bed_box.z_low,
                      handoff_spec.bed_box.z_high +
                          std::max(2.0 * spec.bed_length, ejecta_speed * ejecta_speed / record.gravity)};
+  // The crater on a dump, measured as on an SPH snapshot (grain_crater.hpp).
+  impact::CraterMeasurementOptions options;
+  options.rho_initial = bulk_density;
+  options.particle_spacing = std::cbrt(result.grain_density * std::numbers::pi / 6.0 *
+                                       bed_spec.grain_sizes.mean_cubed_diameter() / bulk_density);
+  options.kernel = sph::KernelType::cubic_spline;
+  options.quarter_symmetric = true;
+  options.max_radius = spec.bed_length - handoff_spec.frozen_thickness - 2.0 * 1.2 * options.particle_spacing;
+  const double initial_mass = b.grains_moving.mass + b.grains_frozen.mass + b.grains_flying.mass;
+  const DumpMeasure measure_dump = [&](const std::filesystem::path& dump) {
+    std::vector<long> ids;
+    const dem::Grains grains = dem::read_lammps_dump(dump, &ids);
+    std::vector<int> roles(grains.size());
+    for (std::size_t g = 0; g < grains.size(); ++g)
+      roles[g] = handoff.roles[static_cast<std::size_t>(ids[g] - 1)];
+    MeasuredDump one;
+    one.crater = impact::measure_crater(grains_as_particles(grains, roles, measurement), options);
+    // Grains that left the box are ejected too: their mass is what the dump lacks.
+    one.crater.ejected_mass =
+        4.0 * (b.sph_ejected.mass + initial_mass -
+               (dem::total_mass(grains) - grain_totals(grains, roles, GrainRole::flying).mass));
+    const long step = dump_step(dump);
+    one.sample = {result.handoff_time + static_cast<double>(step) * result.time_step,
+                  static_cast<std::uint64_t>(step), one.crater.crater_radius,
+                  grain_totals(grains, roles, GrainRole::moving).kinetic_energy};
+    return one;
+  };
+  // The first sample is the impact, as in an SPH run's crater_growth.csv: the projectile's kinetic energy (in
+  // the quarter), the peak the end-of-growth rule's energy criterion refers to.
+  const impact::CraterGrowthSample impact_sample{
+      0.0, 0, std::numeric_limits<double>::quiet_NaN(),
+      0.25 * 0.5 * record.projectile_mass * record.impact_speed * record.impact_speed};
+
+  std::map<long, MeasuredDump> measured;
   if (spec.remeasure) {
     // The earlier run must have started from this very hand-off: its data file is the same text.
     const auto data = folder / "grains.data";
@@ -365,14 +483,14 @@ DemLateStageResult run_dem_late_stage(const DemLateStageSpec& requested, const s
                       "snapshot, bed or options); run without --remeasure",
                       data.string()));
     say(fmt::format("dem: measuring the dumps of the earlier run in {}", folder.string()));
-    // Its LAMMPS wall time stays on record.
+    // Its LAMMPS wall time and whether it was stopped stay on record.
+    result.lammps_seconds = std::numeric_limits<double>::quiet_NaN();
     try {
-      result.lammps_seconds = nlohmann::json::parse(std::ifstream(out / "late_stage.json"))
-                                  .at("wall_seconds")
-                                  .at("lammps")
-                                  .get<double>();
+      const auto earlier = nlohmann::json::parse(std::ifstream(out / "late_stage.json"));
+      result.lammps_seconds = earlier.at("wall_seconds").at("lammps").get<double>();
+      result.stopped_when_grown = earlier.value("stopped_when_grown", false);
     } catch (const nlohmann::json::exception&) {
-      result.lammps_seconds = std::numeric_limits<double>::quiet_NaN();
+      // No record of the earlier run: its wall time is unknown (NaN).
     }
   } else {
     std::filesystem::remove_all(folder);
@@ -382,62 +500,34 @@ DemLateStageResult run_dem_late_stage(const DemLateStageSpec& requested, const s
       std::ofstream(tmp) << late_stage_script(spec, run_contact, record.gravity, result.grain_density,
                                               result.time_step, steps, dump_every);
     });
-    say(fmt::format("dem: LAMMPS on {} process(es): {} grains, {} steps of {:.3g} s to t = {:g} s ({})",
-                    spec.processes, handoff.grains.size(), steps, result.time_step,
-                    result.handoff_time + static_cast<double>(steps) * result.time_step, folder.string()));
+    say(fmt::format(
+        "dem: LAMMPS on {} process(es): {} grains, at most {} steps of {:.3g} s to t = {:g} s{} ({})",
+        spec.processes, handoff.grains.size(), steps, result.time_step,
+        result.handoff_time + static_cast<double>(steps) * result.time_step,
+        spec.stop_when_grown ? ", stopping at the end of growth" : "", folder.string()));
     const auto lammps_start = Clock::now();
-    run_lammps_with_progress({folder, "late_stage.in", spec.processes}, steps, result.handoff_time,
-                             result.time_step, progress);
+    measured = run_lammps_watched({folder, "late_stage.in", spec.processes},
+                                  {steps, result.handoff_time, result.time_step, impact_sample, measure_dump,
+                                   spec.stop_when_grown, progress},
+                                  result.stopped_when_grown);
     result.lammps_seconds = seconds_since(lammps_start);
   }
 
-  // The crater on every dump.
+  // The crater on every dump not measured while LAMMPS ran.
   const auto measure_start = Clock::now();
-  std::vector<std::filesystem::path> dumps;
-  for (const auto& entry : std::filesystem::directory_iterator(folder / "dumps"))
-    dumps.push_back(entry.path());
-  std::sort(dumps.begin(), dumps.end(),
-            [](const auto& a, const auto& c) { return dump_step(a) < dump_step(c); });
-  impact::CraterMeasurementOptions options;
-  options.rho_initial = bulk_density;
-  options.particle_spacing = std::cbrt(result.grain_density * std::numbers::pi / 6.0 *
-                                       bed_spec.grain_sizes.mean_cubed_diameter() / bulk_density);
-  options.kernel = sph::KernelType::cubic_spline;
-  options.quarter_symmetric = true;
-  options.max_radius = spec.bed_length - handoff_spec.frozen_thickness - 2.0 * 1.2 * options.particle_spacing;
-  std::vector<impact::CraterMeasurement> measured;
-  std::vector<double> times;
-  // The first sample is the impact, as in an SPH run's crater_growth.csv: the projectile's kinetic energy (in
-  // the quarter), the peak the end-of-growth rule's energy criterion refers to.
-  result.samples.push_back({0.0, 0, std::numeric_limits<double>::quiet_NaN(),
-                            0.25 * 0.5 * record.projectile_mass * record.impact_speed * record.impact_speed});
-  const double initial_mass = b.grains_moving.mass + b.grains_frozen.mass + b.grains_flying.mass;
-  for (const auto& dump : dumps) {
-    std::vector<long> ids;
-    const dem::Grains grains = dem::read_lammps_dump(dump, &ids);
-    std::vector<int> roles(grains.size());
-    for (std::size_t g = 0; g < grains.size(); ++g)
-      roles[g] = handoff.roles[static_cast<std::size_t>(ids[g] - 1)];
-    const sph::Particles particles = grains_as_particles(grains, roles, measurement);
-    impact::CraterMeasurement m = impact::measure_crater(particles, options);
-    // Grains that left the box are ejected too: their mass is what the dump lacks.
-    m.ejected_mass = 4.0 * (b.sph_ejected.mass + initial_mass -
-                            (dem::total_mass(grains) - grain_totals(grains, roles, GrainRole::flying).mass));
-    const double time = result.handoff_time + static_cast<double>(dump_step(dump)) * result.time_step;
-    result.samples.push_back({time, static_cast<std::uint64_t>(dump_step(dump)), m.crater_radius,
-                              grain_totals(grains, roles, GrainRole::moving).kinetic_energy});
-    measured.push_back(std::move(m));
-    times.push_back(time);
-  }
+  for (const auto& dump : dumps_in(folder / "dumps"))
+    if (measured.count(dump_step(dump)) == 0) measured.emplace(dump_step(dump), measure_dump(dump));
   if (measured.empty())
     throw std::runtime_error(fmt::format("{}: LAMMPS wrote no dump", (folder / "dumps").string()));
+  result.samples = growth_samples(impact_sample, measured);
   result.growth_ended_sample =
       impact::first_sample_of_ended_growth(result.samples, impact::CraterGrowthCriteria{});
-  // samples[k] is measured[k - 1].
+  // samples[k] is the (k - 1)-th dump.
   const std::size_t chosen =
-      result.growth_ended_sample ? *result.growth_ended_sample - 1 : measured.size() - 1;
-  result.crater = measured[chosen];
-  result.crater_time = times[chosen];
+      result.growth_ended_sample ? *result.growth_ended_sample : result.samples.size() - 1;
+  const MeasuredDump& at_end = std::next(measured.begin(), static_cast<long>(chosen - 1))->second;
+  result.crater = at_end.crater;
+  result.crater_time = at_end.sample.time;
   result.measure_seconds = seconds_since(measure_start);
 
   write_atomically(out / "crater_growth.csv", [&](const std::filesystem::path& tmp) {
@@ -469,6 +559,9 @@ DemLateStageResult run_dem_late_stage(const DemLateStageSpec& requested, const s
       {"ejecta_speed_m_per_s", ejecta_speed},
       {"time_step_s", result.time_step},
       {"steps", steps},
+      {"stop_when_grown", spec.stop_when_grown},
+      {"stopped_when_grown", result.stopped_when_grown},
+      {"last_dump_time_s", result.samples.back().time},
       {"grains", result.grains},
       {"plane_height_m", result.plane_height},
       {"crater_radius_m", result.crater.crater_radius},

@@ -1,9 +1,10 @@
 // The DEM late stage end to end on a small synthetic hand-off: a quarter half-space of SPH material at rest
 // around a bowl that flows outward and up, with a few fast ejecta above it, written as an impact run's
-// snapshot; then a bed of 0.2 m grains settled under g = 1 m/s^2, the hand-off, LAMMPS for 1.5 s and the
-// crater on the grains. Checks that what LAMMPS starts from is what the hand-off reported (momentum, mass,
-// energy of its first dump), that mass is kept (every dump plus the grains it lost is the hand-off's mass),
-// and that crater.json is the measurement of the dump it names.
+// snapshot; then a bed of 0.2 m grains settled under g = 1 m/s^2, the hand-off, LAMMPS until growth ends
+// (about 4 s) and the crater on the grains. Checks that what LAMMPS starts from is what the hand-off reported
+// (momentum, mass, energy of its first dump), that mass is kept (every dump plus the grains it lost is the
+// hand-off's mass), that LAMMPS was stopped soon after the end of growth, and that crater.json is the
+// measurement of the dump it names.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,8 +25,8 @@ namespace {
 constexpr double rho = 1300.0;
 constexpr double dx = 0.1;
 
-// SPH material fills x, y in [0, 3], z in [-2.5, 0] except a bowl of radius 0.8 m about the origin; inside
-// 1.4 m the material moves outward and upward at 0.2 m/s (r/1.4); four particles fly up fast.
+// SPH material fills x, y in [0, 3], z in [-2.5, 0] except a bowl about the origin; inside 1.4 m the material
+// moves outward and upward at up to 0.2 m/s; four particles fly up fast.
 std::filesystem::path write_handoff_snapshot(const std::filesystem::path& folder) {
   sph::Particles p;
   auto add = [&](double x, double y, double z, double vx, double vy, double vz) {
@@ -42,7 +43,11 @@ std::filesystem::path write_handoff_snapshot(const std::filesystem::path& folder
     for (double y = 0.5 * dx; y < 3.0; y += dx)
       for (double z = -0.5 * dx; z > -2.5; z -= dx) {
         const double r = std::sqrt(x * x + y * y + z * z);
-        if (r < 0.8) continue;
+        // The bowl: a spherical cap of radius 1 m at the plane and 0.25 m deep (walls up to 28 deg steep: it
+        // stands).
+        constexpr double radius = 1.0, depth = 0.25;
+        constexpr double centre = 0.5 * (radius * radius + depth * depth) / depth - depth;
+        if (x * x + y * y + (z - centre) * (z - centre) < (centre + depth) * (centre + depth)) continue;
         const double speed = r < 1.4 ? 0.2 * (1.4 - r) / 0.6 : 0.0;
         add(x, y, z, speed * x / r, speed * y / r, speed * 0.5);
       }
@@ -80,7 +85,7 @@ TEST(DemLateStage, LammpsStartsFromTheReportedHandOffKeepsMassAndTheCraterIsItsD
   spec.bed_length = 2.4;
   spec.bed_depth = 2.0;
   spec.bed_height = 0.4;
-  spec.end_time = 2.0;
+  spec.end_time = 10.0;
   spec.output_interval = 0.25;
   const auto out = scratch.path() / "run";
   const DemLateStageResult result = run_dem_late_stage(spec, out);
@@ -141,8 +146,18 @@ TEST(DemLateStage, LammpsStartsFromTheReportedHandOffKeepsMassAndTheCraterIsItsD
   // crater.json is the measurement of that dump.
   EXPECT_DOUBLE_EQ(crater_json.at("crater_radius").get<double>(), result.crater.crater_radius);
   EXPECT_TRUE(std::isfinite(result.crater.crater_radius));
-  // The bowl was 0.8 m wide at the plane; the outward flow only widens it.
-  EXPECT_GT(result.crater.crater_radius, 0.8 - spec.grain_diameter);
+  // The bowl was 1 m in radius at the plane; the outward flow only widens it.
+  EXPECT_GT(result.crater.crater_radius, 1.0 - spec.grain_diameter);
+
+  // Growth ended (the bed comes to rest within about 4 s) and LAMMPS was stopped at a dump soon after, long
+  // before the end time; crater.json is the ended sample's.
+  ASSERT_TRUE(result.growth_ended_sample.has_value());
+  EXPECT_TRUE(result.stopped_when_grown);
+  const auto& ended = result.samples[*result.growth_ended_sample];
+  EXPECT_DOUBLE_EQ(result.crater_time, ended.time);
+  EXPECT_EQ(ended.radius, result.crater.crater_radius);
+  EXPECT_LT(result.samples.back().time, spec.end_time - 2.0);
+  EXPECT_GE(result.samples.back().time, ended.time);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// The Ceres fit: recovery of known constants from seeded noisy synthetic data, uncertainties against
-// a bootstrap and against Monte Carlo coverage, undetermined parameters, fixed parameters, a shared
-// strength, the JSON round trip and the input errors.
+// The Ceres fit: recovery of known constants from seeded noisy synthetic data, undetermined parameters, fixed
+// parameters, a shared strength, the JSON round trip and the input errors (the uncertainties against a
+// bootstrap and Monte Carlo coverage: test_fit_coverage.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,57 +13,13 @@
 #include "craterkit/common/input_error.hpp"
 #include "craterkit/scaling/fit.hpp"
 #include "craterkit/scaling/fit_json.hpp"
+#include "scaling/synthetic_radii.hpp"
 
 namespace cs = craterkit::scaling;
 
 namespace {
 
-constexpr double kNoise = 0.05;  // standard deviation of ln R
-
-// Truth: the Jutzi et al. (2022) Ryugu constants, in the Housen & Holsapple (2011) form.
-cs::ScalingLaw truth_hh() {
-  return {cs::Form::hh2011, 0.60, 0.25, 0.44, 0.4};
-}
-
-struct Grid {
-  std::vector<double> masses{0.05, 2.0, 100.0, 2000.0};  // kg
-  std::vector<double> densities{2700.0, 7800.0};         // kg/m^3
-  std::vector<double> strengths{0.05, 0.5, 5.0, 50.0};   // Pa
-  std::vector<double> velocities{1000.0, 4000.0};        // m/s
-  double gravity = 1.4e-4;
-};
-
-// Impacts on the grid with radii from `law` times exp(kNoise N(0,1)); sigma column = kNoise R.
-cs::RadiiTable synthetic(const cs::ScalingLaw& law, const Grid& grid, unsigned seed, bool with_sigma = true) {
-  std::mt19937_64 random(seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  cs::RadiiTable table;
-  table.source = "synthetic";
-  int line = 1;
-  for (double delta : grid.densities) {
-    for (double mass : grid.masses) {
-      for (double y : grid.strengths) {
-        for (double u : grid.velocities) {
-          cs::ImpactRecord row;
-          row.impactor = {std::cbrt(3.0 * mass / (4.0 * std::numbers::pi * delta)), delta, u};
-          row.target = {1300.0, grid.gravity, y};
-          row.crater_radius =
-              cs::crater_radius(law, row.impactor, row.target) * std::exp(kNoise * normal(random));
-          if (with_sigma) row.crater_radius_sigma = kNoise * row.crater_radius;
-          row.line = ++line;
-          table.rows.push_back(row);
-        }
-      }
-    }
-  }
-  return table;
-}
-
-double truth_value(const cs::ScalingLaw& law, const std::string& name) {
-  if (name == "mu") return law.mu;
-  if (name == "nu") return law.nu;
-  return name.back() == '1' ? law.coefficient_1 : law.coefficient_2;
-}
+using namespace scaling_test;
 
 void expect_within_two_sigma(const cs::FitResult& fit, const cs::ScalingLaw& truth) {
   for (const auto& p : fit.parameters) {
@@ -111,59 +67,6 @@ TEST(Fit, RecoversKnownConstantsWithinTwoSigmaInBothForms) {
   EXPECT_NEAR(a.chi2, b.chi2, 1e-6 * a.chi2);
   EXPECT_NEAR(cs::convert(a.law(), cs::Form::holsapple).coefficient_2, b.law().coefficient_2,
               1e-4 * b.law().coefficient_2);
-}
-
-TEST(Fit, CovarianceAgreesWithBootstrapAndMonteCarloCoverage) {
-  const Grid grid;
-  const auto table = synthetic(truth_hh(), grid, 2);
-  cs::FitOptions options;
-  options.form = cs::Form::hh2011;
-  const auto reference = cs::fit_scaling_law(table, options);
-
-  cs::FitOptions quick = options;
-  quick.starts = 2;
-
-  // Non-parametric bootstrap: resample rows with replacement and refit.
-  constexpr int kBootstrap = 200;
-  std::mt19937_64 random(99);
-  std::uniform_int_distribution<std::size_t> pick(0, table.rows.size() - 1);
-  std::vector<std::vector<double>> samples(4);
-  for (int b = 0; b < kBootstrap; ++b) {
-    cs::RadiiTable resampled;
-    resampled.source = "bootstrap";
-    for (std::size_t i = 0; i < table.rows.size(); ++i) resampled.rows.push_back(table.rows[pick(random)]);
-    const auto fit = cs::fit_scaling_law(resampled, quick);
-    for (int k = 0; k < 4; ++k) samples[k].push_back(fit.parameters[k].value);
-  }
-  for (int k = 0; k < 4; ++k) {
-    const auto& s = samples[k];
-    double mean = 0.0;
-    for (double v : s) mean += v / s.size();
-    double variance = 0.0;
-    for (double v : s) variance += (v - mean) * (v - mean) / (s.size() - 1);
-    const double bootstrap_sigma = std::sqrt(variance);
-    SCOPED_TRACE(reference.parameters[k].name);
-    // 200 resamples estimate a sigma to about 5 %; allow 25 % for that and the model's non-linearity.
-    EXPECT_NEAR(bootstrap_sigma / reference.parameters[k].sigma, 1.0, 0.25)
-        << "bootstrap " << bootstrap_sigma << " Ceres " << reference.parameters[k].sigma;
-  }
-
-  // Monte Carlo: fresh noise on the true law; each parameter's truth must fall inside its 2-sigma
-  // interval in about 95 % of the fits.
-  constexpr int kRealisations = 60;
-  std::vector<int> covered(4, 0);
-  for (int seed = 0; seed < kRealisations; ++seed) {
-    const auto fit = cs::fit_scaling_law(synthetic(truth_hh(), grid, 1000 + seed), quick);
-    for (int k = 0; k < 4; ++k) {
-      const auto& p = fit.parameters[k];
-      if (std::abs(p.value - truth_value(truth_hh(), p.name)) < 2.0 * p.sigma) ++covered[k];
-    }
-  }
-  for (int k = 0; k < 4; ++k) {
-    SCOPED_TRACE(reference.parameters[k].name);
-    // Binomial(60, 0.95): fewer than 52 has probability below 1 %.
-    EXPECT_GE(covered[k], 52);
-  }
 }
 
 TEST(Fit, UnweightedTableScalesSigmasByResidualScatter) {

@@ -12,10 +12,11 @@
 //     overlap of 1e-3 d under its weight (youngs_modulus_for_overlap), the run uses that or, when stiffer,
 //     the one for which the flow's fastest grain hitting a grain at rest overlaps by 5 % of the smallest
 //     diameter (youngs_modulus_for_impact);
-//   - the hand-off (handoff.hpp), then LAMMPS to `end_time` with mirror walls at x = 0 and y = 0, the outer
-//     shell frozen, fast ejecta ballistic, grains leaving the box lost (counted as ejected);
-//   - the grains dumped every `output_interval`, each dump measured as an SPH snapshot is (grain_crater.hpp),
-//     the end of growth found with the SPH run's rule (crater_growth.hpp).
+//   - the hand-off (handoff.hpp), then LAMMPS with mirror walls at x = 0 and y = 0, the outer shell frozen,
+//     fast ejecta ballistic, grains leaving the box lost (counted as ejected);
+//   - the grains dumped every `output_interval`, each dump measured as an SPH snapshot is (grain_crater.hpp)
+//     while LAMMPS runs, and LAMMPS stopped at the end of growth by the SPH run's rule (crater_growth.hpp),
+//     or at `end_time`.
 // Writes into `out`: handoff.json (the balance of the hand-off), crater_growth.csv, crater.json and
 // crater_profile.csv (at the end of growth, or at the end time when growth did not end), late_stage.json
 // (the set-up, the costs and the result), and lammps/ (script, data file, log, dumps).
@@ -40,7 +41,10 @@ struct DemLateStageSpec {
   double bed_height = 2.0;      // m above it before carving (room for the material the SPH stage raised)
   double repose_angle = 29.24;  // degrees, of the SPH material (theta(f) of physics.md section 2)
   double restitution = 0.5;
-  double end_time = 500.0;       // s, impact time at which LAMMPS stops
+  double end_time = 500.0;  // s, impact time at which LAMMPS stops at the latest
+  // Stop LAMMPS at the end of growth (the SPH run's rule, applied to the dumps while it runs); false: run to
+  // end_time, still reporting when growth ended.
+  bool stop_when_grown = true;
   double output_interval = 5.0;  // s between crater samples
   double ejecta_speed = 0.0;     // m/s; 0: the SPH run's escape speed
   std::uint64_t seed = 1;
@@ -59,6 +63,7 @@ struct DemLateStageResult {
   // LAMMPS steps since the hand-off).
   std::vector<impact::CraterGrowthSample> samples;
   std::optional<std::size_t> growth_ended_sample;  // index into samples
+  bool stopped_when_grown = false;                 // LAMMPS was asked to stop before end_time
   impact::CraterMeasurement crater;                // at the end of growth (or at the last sample)
   double crater_time = 0.0;                        // s
   double plane_height = 0.0;                       // m, the grains' pre-impact level
