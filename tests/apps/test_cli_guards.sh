@@ -108,6 +108,14 @@ expect_refusal "measure with a tiny radial step" "radial_step 1e-12 m: 5e+10 sam
   "$WORK/a/snap_000000.h5" --rho-initial 1 --spacing 0.01 --max-radius 0.05 --radial-step 1e-12
 expect_refusal "measure with too many azimuths" "--azimuths 100000" "$CK" measure "$WORK/a/snap_000000.h5" \
   --rho-initial 1 --spacing 0.01 --azimuths 100000
+# The DEM late stage refuses before it writes anything (a Sod snapshot is no impact run).
+expect_refusal "dem-late-stage with a negative grain" "grain_diameter" "$CK" dem-late-stage \
+  "$WORK/a/snap_000000.h5" --out "$WORK/dem" --grain-diameter -0.5
+expect_refusal "dem-late-stage with f = 2" "--friction 2 is not allowed" "$CK" dem-late-stage \
+  "$WORK/a/snap_000000.h5" --out "$WORK/dem" --friction 2
+expect_refusal "dem-late-stage on a Sod snapshot" "not the snapshot of an impact run" "$CK" dem-late-stage \
+  "$WORK/a/snap_000000.h5" --out "$WORK/dem" --no-stop-when-grown
+[ -e "$WORK/dem" ] && fail "a refused dem-late-stage created its folder"
 
 [ "$failures" -eq 0 ] && echo "all guard checks passed"
 exit "$failures"
