@@ -3,13 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <map>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "craterkit/common/atomic_file.hpp"
@@ -115,6 +118,20 @@ std::map<std::string, double> read_status(const std::filesystem::path& path) {
   return values;
 }
 
+// The step and the mean grain speed of the last thermo line in a settling log (zeros before the first).
+std::pair<long, double> last_thermo_step_and_speed(const std::filesystem::path& log) {
+  std::ifstream in(log);
+  std::string line;
+  std::pair<long, double> last{0, 0.0};
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    long step = 0, atoms = 0;
+    double kinetic_energy = 0.0, mean_speed = 0.0;
+    if (words >> step >> atoms >> kinetic_energy >> mean_speed) last = {step, mean_speed};
+  }
+  return last;
+}
+
 SettledBed describe(const BedSpec& spec, Grains grains) {
   // LAMMPS maps a grain that crossed a periodic side back into the box only when it rebuilds its lists.
   for (std::size_t i = 0; i < grains.size() && !spec.side_walls; ++i) {
@@ -176,7 +193,8 @@ std::string bed_hash(const BedSpec& spec) {
   return fmt::format("{:016x}", hash);
 }
 
-SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder) {
+SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder,
+                      const ProgressLine& progress) {
   check_bed_spec(spec);
   std::filesystem::create_directories(folder);
   std::mt19937_64 random(spec.seed);
@@ -197,9 +215,21 @@ SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder) 
     std::ofstream(tmp) << settle_script(spec, time_step, max_steps);
   });
   std::filesystem::remove(folder / "settle_status.txt");
-  run_lammps({folder, "settle.in", spec.processes});
-  const auto status = read_status(folder / "settle_status.txt");
   const double rest = rest_speed(spec.rest_speed_fraction, spec.gravity, spec.grain_sizes.mean_diameter());
+  LammpsPoll poll;
+  if (progress) {
+    const auto start = std::chrono::steady_clock::now();
+    poll.call = [&] {
+      const auto [step, mean_speed] = last_thermo_step_and_speed(folder / "settle.log");
+      progress(fmt::format(
+          "dem: settling: step {} (at most {} in each of 2 settlings), mean grain speed {:.3g} m/s (at rest "
+          "below {:.3g}), {:.0f} s elapsed",
+          step, max_steps, mean_speed, rest,
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
+    };
+  }
+  run_lammps({folder, "settle.in", spec.processes}, poll);
+  const auto status = read_status(folder / "settle_status.txt");
   for (const char* stage : {"first_settle", "second_settle"}) {
     const auto found = status.find(stage);
     if (found == status.end())
@@ -221,7 +251,8 @@ SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder) 
   return bed;
 }
 
-SettledBed settled_bed_cached(const BedSpec& spec, const std::filesystem::path& cache) {
+SettledBed settled_bed_cached(const BedSpec& spec, const std::filesystem::path& cache,
+                              const ProgressLine& progress) {
   check_bed_spec(spec);
   const std::string hash = bed_hash(spec);
   const auto dump = cache / ("bed-" + hash + ".dump");
@@ -233,7 +264,7 @@ SettledBed settled_bed_cached(const BedSpec& spec, const std::filesystem::path& 
     std::getline(in, stored);
     if (stored == key) return describe(spec, read_lammps_dump(dump));
   }
-  SettledBed bed = settle_bed(spec, cache / ("bed-" + hash));
+  SettledBed bed = settle_bed(spec, cache / ("bed-" + hash), progress);
   // The dump first, the key last: a key is only ever beside a complete dump.
   std::filesystem::copy_file(cache / ("bed-" + hash) / "bed.dump", temporary_sibling(dump),
                              std::filesystem::copy_options::overwrite_existing);

@@ -33,7 +33,8 @@ inline long rest_check_interval(long max_steps) {
   return std::max(100L, max_steps / 1000);
 }
 
-// From the title to `thermo_style`; defines v_mean_speed (m/s) for `fix halt`.
+// From the title to `thermo_style` (flushed, so that the log can be read while LAMMPS runs); defines
+// v_mean_speed (m/s) for `fix halt`.
 inline std::string granular_script_start(const GranularScript& s) {
   return fmt::format(R"(# {title}
 units si
@@ -56,6 +57,7 @@ compute mean_speed all reduce ave v_speed
 variable mean_speed equal c_mean_speed
 thermo {check}
 thermo_style custom step atoms ke v_mean_speed
+thermo_modify flush yes
 )",
                      fmt::arg("title", s.title), fmt::arg("boundary", s.boundary),
                      fmt::arg("data", s.data_file), fmt::arg("model", s.contact_model),

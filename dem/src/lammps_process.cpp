@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 
+#include <signal.h>
 #include <unistd.h>
+
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <thread>
 
 #include "craterkit/common/child_process.hpp"
 
@@ -70,7 +73,7 @@ std::filesystem::path find_lammps() {
   return program;
 }
 
-void run_lammps(const LammpsRun& run) {
+void run_lammps(const LammpsRun& run, const LammpsPoll& poll) {
   if (run.processes < 1)
     throw std::invalid_argument(fmt::format("run_lammps: processes {} < 1", run.processes));
   const auto lammps = find_lammps();
@@ -95,7 +98,31 @@ void run_lammps(const LammpsRun& run) {
   in_folder.program = "/usr/bin/env";
   in_folder.arguments = {"-C", run.folder.string(), command.program.string()};
   in_folder.arguments.insert(in_folder.arguments.end(), command.arguments.begin(), command.arguments.end());
-  const ExitStatus status = wait_child(spawn_child(in_folder));
+  const pid_t child = spawn_child(in_folder);
+  ExitStatus status;
+  if (!poll.call) {
+    status = wait_child(child);
+  } else {
+    using Clock = std::chrono::steady_clock;
+    auto next_poll = Clock::now() + std::chrono::duration_cast<Clock::duration>(poll.interval);
+    for (;;) {
+      if (const auto ended = poll_child(child)) {
+        status = *ended;
+        break;
+      }
+      if (Clock::now() >= next_poll) {
+        try {
+          poll.call();
+        } catch (...) {
+          ::kill(child, SIGTERM);
+          wait_child(child);
+          throw;
+        }
+        next_poll = Clock::now() + std::chrono::duration_cast<Clock::duration>(poll.interval);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
   if (!status.success()) {
     std::string reason = error_in_log(log);
     if (reason.empty()) {

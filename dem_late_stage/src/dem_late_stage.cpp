@@ -4,16 +4,13 @@
 
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <fstream>
 #include <iterator>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
-#include <thread>
 
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/checks.hpp"
@@ -171,82 +168,54 @@ struct LammpsWatch {
 };
 
 // Runs LAMMPS and measures each dump it has finished (a dump is finished once the next one exists) as it
-// appears. When stop_when_grown and the samples show the end of growth, the file stop.request asks LAMMPS
-// to end the run at its next dump (the script's fix halt). Progress every 30 s from its log. Returns the
-// dumps measured while it ran, by step; `stop_requested` tells whether the run was asked to end.
+// appears, looking every 2 s. When stop_when_grown and the samples show the end of growth, the file
+// stop.request asks LAMMPS to end the run at its next dump (the script's fix halt). Progress every 30 s from
+// its log. Returns the dumps measured while it ran, by step; `stop_requested` tells whether the run was asked
+// to end.
 std::map<long, MeasuredDump> run_lammps_watched(const dem::LammpsRun& run, const LammpsWatch& watch,
                                                 bool& stop_requested) {
   std::map<long, MeasuredDump> measured;
   stop_requested = false;
-  std::mutex mutex;
-  std::condition_variable done_signal;
-  bool done = false;
-  const auto dump_folder = run.folder / "dumps";
-  // Measures the finished dumps not yet measured; true once growth has ended.
-  auto measure_finished = [&] {
-    const auto dumps = dumps_in(dump_folder);
-    for (std::size_t k = 0; k + 1 < dumps.size(); ++k) {
-      const long step = dump_step(dumps[k]);
-      if (measured.count(step) != 0) continue;
-      measured.emplace(step, watch.measure(dumps[k]));
+  const auto start = Clock::now();
+  auto reported = start;
+  dem::LammpsPoll poll;
+  poll.interval = std::chrono::seconds(2);
+  poll.call = [&] {
+    // The finished dumps not yet measured.
+    try {
+      const auto dumps = dumps_in(run.folder / "dumps");
+      for (std::size_t k = 0; k + 1 < dumps.size(); ++k)
+        if (measured.count(dump_step(dumps[k])) == 0)
+          measured.emplace(dump_step(dumps[k]), watch.measure(dumps[k]));
+    } catch (const std::exception&) {
+      // A dump that cannot be read now is measured again after the run, where its error is reported.
     }
-    return impact::first_sample_of_ended_growth(growth_samples(watch.impact, measured),
-                                                impact::CraterGrowthCriteria{})
-        .has_value();
-  };
-  std::thread watcher([&] {
-    const auto start = Clock::now();
-    auto reported = start;
-    std::unique_lock lock(mutex);
-    while (!done_signal.wait_for(lock, std::chrono::seconds(2), [&] { return done; })) {
-      lock.unlock();
-      bool grown = false;
-      try {
-        grown = measure_finished();
-      } catch (const std::exception&) {
-        // A dump that cannot be read now is measured again after the run, where its error is reported.
-      }
-      if (grown && watch.stop_when_grown && !stop_requested) {
-        stop_requested = true;
-        std::ofstream(run.folder / "stop.request") << "growth ended\n";
-        if (watch.progress)
-          watch.progress(
-              fmt::format("dem: growth ended at t = {:.1f} s (R = {:.3f} m); stopping LAMMPS at its "
-                          "next dump",
-                          measured.rbegin()->second.sample.time, measured.rbegin()->second.sample.radius));
-      }
-      if (watch.progress && seconds_since(reported) >= 30.0) {
-        reported = Clock::now();
-        const long step = last_logged_step(run.folder / "late_stage.log");
-        const double elapsed = seconds_since(start);
-        const double left =
-            step > 0 ? elapsed * static_cast<double>(watch.steps - step) / static_cast<double>(step) : 0.0;
-        const std::string radius =
-            measured.empty() ? std::string()
-                             : fmt::format(", R = {:.3f} m", measured.rbegin()->second.sample.radius);
+    if (watch.stop_when_grown && !stop_requested &&
+        impact::first_sample_of_ended_growth(growth_samples(watch.impact, measured),
+                                             impact::CraterGrowthCriteria{})) {
+      stop_requested = true;
+      std::ofstream(run.folder / "stop.request") << "growth ended\n";
+      if (watch.progress)
         watch.progress(
-            fmt::format("dem: t = {:.1f} s{}, step {} of {}, {:.0f} s elapsed, at most {:.0f} s left",
-                        watch.handoff_time + static_cast<double>(step) * watch.time_step, radius, step,
-                        watch.steps, elapsed, left));
-      }
-      lock.lock();
+            fmt::format("dem: growth ended at t = {:.1f} s (R = {:.3f} m); stopping LAMMPS at its next dump",
+                        measured.rbegin()->second.sample.time, measured.rbegin()->second.sample.radius));
     }
-  });
-  auto finish = [&] {
-    {
-      std::lock_guard lock(mutex);
-      done = true;
+    if (watch.progress && seconds_since(reported) >= 30.0) {
+      reported = Clock::now();
+      const long step = last_logged_step(run.folder / "late_stage.log");
+      const double elapsed = seconds_since(start);
+      const double left =
+          step > 0 ? elapsed * static_cast<double>(watch.steps - step) / static_cast<double>(step) : 0.0;
+      const std::string radius = measured.empty()
+                                     ? std::string()
+                                     : fmt::format(", R = {:.3f} m", measured.rbegin()->second.sample.radius);
+      watch.progress(
+          fmt::format("dem: t = {:.1f} s{}, step {} of {}, {:.0f} s elapsed, at most {:.0f} s left",
+                      watch.handoff_time + static_cast<double>(step) * watch.time_step, radius, step,
+                      watch.steps, elapsed, left));
     }
-    done_signal.notify_all();
-    watcher.join();
   };
-  try {
-    dem::run_lammps(run);
-  } catch (...) {
-    finish();
-    throw;
-  }
-  finish();
+  dem::run_lammps(run, poll);
   return measured;
 }
 
@@ -338,7 +307,7 @@ DemLateStageResult run_dem_late_stage(const DemLateStageSpec& requested, const s
   say(fmt::format("dem: bed {} x {} x {} m of {:g} m grains (hash {}), cached in {}", spec.bed_length,
                   spec.bed_length, bed_spec.depth, spec.grain_diameter, dem::bed_hash(bed_spec),
                   cache.string()));
-  dem::SettledBed settled = dem::settled_bed_cached(bed_spec, cache);
+  dem::SettledBed settled = dem::settled_bed_cached(bed_spec, cache, progress);
   result.settle_seconds = seconds_since(settle_start);
   // The grain density for the target's bulk density exactly; the bed in the impact's coordinates, its
   // surface bed_height above the pre-impact plane.

@@ -2,6 +2,8 @@
 // the data and dump files read and written by LAMMPS itself, LAMMPS failures, the bed's cache key.
 #include <gtest/gtest.h>
 
+#include <chrono>
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -187,6 +189,31 @@ TEST(LammpsFiles, ADumpWithOtherColumnsIsRefusedNamingFileAndLine) {
         std::string::npos)
         << e.what();
   }
+}
+
+TEST(LammpsProcess, PollIsCalledWhileItRunsAndWhatItThrowsStopsTheRun) {
+  // A grain flying on for 2e9 steps (minutes): the poll sees the log grow, then throws; the run must end at
+  // once with the poll's exception, the process gone.
+  const test::ScratchDirectory folder("dem");
+  std::ofstream(folder.path() / "long.in")
+      << "units si\natom_style sphere\nregion box block 0 1 0 1 0 1\ncreate_box 1 box\n"
+      << "create_atoms 1 single 0.5 0.5 0.5\nset type 1 diameter 0.1 density 1000\nfix move all nve/sphere\n"
+      << "thermo 100000\nthermo_modify flush yes\nrun 2000000000\n";
+  int calls = 0;
+  LammpsPoll poll;
+  poll.interval = std::chrono::milliseconds(200);
+  poll.call = [&] {
+    if (++calls == 3) throw std::runtime_error("enough");
+  };
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    run_lammps({folder.path(), "long.in", 1}, poll);
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "enough");
+  }
+  EXPECT_EQ(calls, 3);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
 }
 
 TEST(LammpsProcess, AFailedRunQuotesTheLammpsErrorAndItsLog) {

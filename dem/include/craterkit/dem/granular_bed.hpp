@@ -5,6 +5,7 @@
 // of everything that defines it (docs/dem.md, "Settled bed").
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "craterkit/dem/grain_contact.hpp"
@@ -48,12 +49,18 @@ struct SettledBed {
 [[nodiscard]] std::string bed_key(const BedSpec& spec);
 [[nodiscard]] std::string bed_hash(const BedSpec& spec);
 
-// Settles the bed with LAMMPS in `folder` (created; holds the script, log and files).
-[[nodiscard]] SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder);
+// A line of progress (may be empty: none).
+using ProgressLine = std::function<void(const std::string&)>;
+
+// Settles the bed with LAMMPS in `folder` (created; holds the script, log and files); progress every 30 s
+// from LAMMPS's log (step, mean grain speed against the rest speed).
+[[nodiscard]] SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder,
+                                    const ProgressLine& progress = {});
 
 // The bed from `cache/bed-<hash>.dump` when present, else settled in `cache/bed-<hash>/` and stored there
 // (atomically, with its key beside it in bed-<hash>.key).
-[[nodiscard]] SettledBed settled_bed_cached(const BedSpec& spec, const std::filesystem::path& cache);
+[[nodiscard]] SettledBed settled_bed_cached(const BedSpec& spec, const std::filesystem::path& cache,
+                                            const ProgressLine& progress = {});
 
 // The fraction of the box's slab low <= z <= high filled by grain volume (spheres cut by the planes).
 [[nodiscard]] double packing_fraction_between(const Grains& grains, const Box& box, double low, double high);

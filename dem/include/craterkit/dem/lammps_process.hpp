@@ -2,7 +2,9 @@
 // LAMMPS as a child process: Debian's `lmp` (or $CRATERKIT_LAMMPS) runs an input script craterkit wrote, in
 // a folder of its own, serially or under `mpirun -n N`. LAMMPS ends its process on any error of its input,
 // so it cannot share craterkit's; a failed run is reported with the ERROR line of its log.
+#include <chrono>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace craterkit::dem {
@@ -17,8 +19,15 @@ struct LammpsRun {
   int processes = 1;             // > 1: under mpirun (Open MPI)
 };
 
+// What to do while LAMMPS runs: `call` every `interval`, on the calling thread (to report progress from the
+// log, or to look at what LAMMPS has written). An exception from it stops LAMMPS (SIGTERM) and is passed on.
+struct LammpsPoll {
+  std::function<void()> call;  // empty: just wait
+  std::chrono::duration<double> interval{30.0};
+};
+
 // Runs the script to its end, the working directory being `folder`. std::runtime_error naming the log and
 // quoting its ERROR line (or the exit status) when LAMMPS fails.
-void run_lammps(const LammpsRun& run);
+void run_lammps(const LammpsRun& run, const LammpsPoll& poll = {});
 
 }  // namespace craterkit::dem
