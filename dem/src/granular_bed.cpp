@@ -10,9 +10,7 @@
 #include <map>
 #include <numbers>
 #include <random>
-#include <sstream>
 #include <stdexcept>
-#include <utility>
 #include <vector>
 
 #include "craterkit/common/atomic_file.hpp"
@@ -118,20 +116,6 @@ std::map<std::string, double> read_status(const std::filesystem::path& path) {
   return values;
 }
 
-// The step and the mean grain speed of the last thermo line in a settling log (zeros before the first).
-std::pair<long, double> last_thermo_step_and_speed(const std::filesystem::path& log) {
-  std::ifstream in(log);
-  std::string line;
-  std::pair<long, double> last{0, 0.0};
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    long step = 0, atoms = 0;
-    double kinetic_energy = 0.0, mean_speed = 0.0;
-    if (words >> step >> atoms >> kinetic_energy >> mean_speed) last = {step, mean_speed};
-  }
-  return last;
-}
-
 SettledBed describe(const BedSpec& spec, Grains grains) {
   // LAMMPS maps a grain that crossed a periodic side back into the box only when it rebuilds its lists.
   for (std::size_t i = 0; i < grains.size() && !spec.side_walls; ++i) {
@@ -220,7 +204,10 @@ SettledBed settle_bed(const BedSpec& spec, const std::filesystem::path& folder,
   if (progress) {
     const auto start = std::chrono::steady_clock::now();
     poll.call = [&] {
-      const auto [step, mean_speed] = last_thermo_step_and_speed(folder / "settle.log");
+      // thermo_style custom step atoms ke v_mean_speed
+      const auto last = last_thermo_values(folder / "settle.log", 4);
+      const long step = last.empty() ? 0 : std::lround(last[0]);
+      const double mean_speed = last.empty() ? 0.0 : last[3];
       progress(fmt::format(
           "dem: settling: step {} (at most {} in each of 2 settlings), mean grain speed {:.3g} m/s (at rest "
           "below {:.3g}), {:.0f} s elapsed",

@@ -134,4 +134,18 @@ void run_lammps(const LammpsRun& run, const LammpsPoll& poll) {
   }
 }
 
+std::vector<double> last_thermo_values(const std::filesystem::path& log, std::size_t columns) {
+  std::ifstream in(log);
+  std::string line;
+  std::vector<double> last, values(columns);
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::size_t read = 0;
+    while (read < columns && words >> values[read]) ++read;
+    std::string more;
+    if (read == columns && !(words >> more)) last = values;
+  }
+  return last;
+}
+
 }  // namespace craterkit::dem

@@ -10,7 +10,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
-#include <sstream>
 
 #include "craterkit/common/atomic_file.hpp"
 #include "craterkit/common/checks.hpp"
@@ -118,20 +117,6 @@ long dump_step(const std::filesystem::path& path) {
   return std::stol(stem.substr(stem.find('.') + 1));
 }
 
-// The last thermo step LAMMPS logged (0 when none yet).
-long last_logged_step(const std::filesystem::path& log) {
-  std::ifstream in(log);
-  std::string line;
-  long last = 0;
-  while (std::getline(in, line)) {
-    std::istringstream words(line);
-    long step = 0;
-    long atoms = 0;
-    if (words >> step >> atoms && words.peek() != EOF) last = step;
-  }
-  return last;
-}
-
 // One dump measured: its growth sample and its crater.
 struct MeasuredDump {
   impact::CraterGrowthSample sample;
@@ -202,7 +187,8 @@ std::map<long, MeasuredDump> run_lammps_watched(const dem::LammpsRun& run, const
     }
     if (watch.progress && seconds_since(reported) >= 30.0) {
       reported = Clock::now();
-      const long step = last_logged_step(run.folder / "late_stage.log");
+      const auto last = dem::last_thermo_values(run.folder / "late_stage.log", 3);  // step atoms ke
+      const long step = last.empty() ? 0 : std::lround(last[0]);
       const double elapsed = seconds_since(start);
       const double left =
           step > 0 ? elapsed * static_cast<double>(watch.steps - step) / static_cast<double>(step) : 0.0;

@@ -191,6 +191,20 @@ TEST(LammpsFiles, ADumpWithOtherColumnsIsRefusedNamingFileAndLine) {
   }
 }
 
+TEST(LammpsProcess, LastThermoValuesAreTheLastLineOfThatManyNumbers) {
+  const test::ScratchDirectory folder("dem");
+  const auto log = folder.path() / "run.log";
+  EXPECT_TRUE(last_thermo_values(log, 3).empty());  // no log yet
+  std::ofstream(log)
+      << "thermo 100\n   Step          Atoms         KinEng    \n         0          1458   6.5         \n"
+      << "       100          1457   5.25        \nPer MPI rank memory allocation (min/avg/max) = 13 | 13 | "
+         "13\n"
+      << "       200          1457   4.5  0.1\nLoop time of 1.5 on 1 procs for 200 steps with 1457 atoms\n";
+  EXPECT_EQ(last_thermo_values(log, 3), (std::vector<double>{100, 1457, 5.25}));
+  EXPECT_EQ(last_thermo_values(log, 4), (std::vector<double>{200, 1457, 4.5, 0.1}));
+  EXPECT_TRUE(last_thermo_values(log, 5).empty());
+}
+
 TEST(LammpsProcess, PollIsCalledWhileItRunsAndWhatItThrowsStopsTheRun) {
   // A grain flying on for 2e9 steps (minutes): the poll sees the log grow, then throws; the run must end at
   // once with the poll's exception, the process gone.

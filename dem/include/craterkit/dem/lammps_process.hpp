@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace craterkit::dem {
 
@@ -29,5 +30,9 @@ struct LammpsPoll {
 // Runs the script to its end, the working directory being `folder`. std::runtime_error naming the log and
 // quoting its ERROR line (or the exit status) when LAMMPS fails.
 void run_lammps(const LammpsRun& run, const LammpsPoll& poll = {});
+
+// The last line of a LAMMPS log that is `columns` numbers (a thermo line of that many columns), or an empty
+// vector when there is none yet: to follow a run while it goes (with `thermo_modify flush yes`).
+[[nodiscard]] std::vector<double> last_thermo_values(const std::filesystem::path& log, std::size_t columns);
 
 }  // namespace craterkit::dem
