@@ -1,14 +1,14 @@
 """The SCI crater's cost model from runs at several outer spacings (bench/sci_cost_curve/run.sh).
 
 Every run costs a fixed part (the graded core, the same in every run) and the outer particles' part, their number
-(~dx^-3) times their late-stage steps (~dx^-1): particle updates U(dx) = U0 + k dx^-p. Through three runs the fit is
-exact; with more it is least squares in p. Prints each run, the fit, and projections for finer spacings from the
-particle counts of `craterkit simulate --dry-run`.
+(~dx^-3) times their late-stage steps (~dx^-1): particle updates U(dx) = U0 + k dx^-p. U0 and k by least squares
+for each p on a grid, p where the relative residuals are least (through three runs the fit is exact). Prints each
+run, the fit, and the projected updates and wall time at finer spacings (the particle counts there: `craterkit
+simulate --dry-run`).
 
 Usage: python3 curve.py RUN_FOLDER DX DX DX [DX ...]   (RUN_FOLDER holds run-DX.json of each)
 """
 import json
-import math
 import sys
 
 
