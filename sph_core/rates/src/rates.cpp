@@ -239,9 +239,11 @@ template <class Kernel, bool artificial_stress>
 // Solids, before the pair loop: B = sigma L / rho^2 of every particle, the half of the corrected stress
 // force and of the work term that belongs to one particle of a pair. Once per particle instead of once
 // per pair (a pair then reads 9 values of B_j instead of S_j, P_j and L_j and computing sigma_j L_j);
-// every particle, because the selected ones read the neighbours' B. With the artificial stress also R.
+// for the particles whose B the pass reads: the selected ones and their neighbours. With the artificial
+// stress also R.
 template <class Kernel, bool artificial_stress>
-SolidFields stress_force_pass(const Particles& p, const RateOptions& options, RateWorkspace& workspace) {
+SolidFields stress_force_pass(const Particles& p, const RateOptions& options, RateWorkspace& workspace,
+                              const ParticleSelection& neighbourhood) {
   std::array<double*, 6> artificial{};
   if constexpr (artificial_stress) {
     for (int k = 0; k < 6; ++k) {
@@ -267,9 +269,10 @@ SolidFields stress_force_pass(const Particles& p, const RateOptions& options, Ra
     workspace.stress_force[k].resize(p.size());
     B[k] = workspace.stress_force[k].data();
   }
-  const auto all = static_cast<std::int64_t>(p.size());
+  const auto count = static_cast<std::int64_t>(neighbourhood.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < all; ++i) {
+  for (std::int64_t k = 0; k < count; ++k) {
+    const std::size_t i = neighbourhood.at(static_cast<std::size_t>(k));
     const double inv_rho2 = inv_rho_all[i] * inv_rho_all[i];
     const double P = pressure_all[i];
     const double s_xx = sxx[i] - P, s_xy = sxy[i], s_xz = sxz[i], s_yy = syy[i] - P, s_yz = syz[i];
@@ -334,7 +337,8 @@ SolidFields stress_force_pass(const Particles& p, const RateOptions& options, Ra
 template <class Kernel, bool solid, bool mirrored, bool artificial_stress = false>
 RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& options,
                        RateWorkspace& workspace, VelocityGradients* gradients,
-                       const ParticleSelection& selection, const StressRateInputs* stress_inputs) {
+                       const ParticleSelection& selection, const ParticleSelection& neighbourhood,
+                       const StressRateInputs* stress_inputs) {
   static_assert(solid || !artificial_stress);
   const auto n = static_cast<std::int64_t>(selection.size());
   const PairFrame frame = detail::pair_frame(p, options.period, options.mirror);
@@ -364,7 +368,7 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   SolidFields stress{};
   std::array<double*, 6> correction{};
   if constexpr (solid) {
-    stress = stress_force_pass<Kernel, artificial_stress>(p, options, workspace);
+    stress = stress_force_pass<Kernel, artificial_stress>(p, options, workspace, neighbourhood);
     correction = {p.correction_xx.data(), p.correction_xy.data(), p.correction_xz.data(),
                   p.correction_yy.data(), p.correction_yz.data(), p.correction_zz.data()};
   }
@@ -496,28 +500,29 @@ namespace {
 
 RateSummary dispatch_rates(Particles& particles, const PairList& pairs, const RateOptions& options,
                            RateWorkspace& workspace, const ParticleSelection& selection,
-                           VelocityGradients* gradients, const StressRateInputs* stress_inputs) {
+                           const ParticleSelection& neighbourhood, VelocityGradients* gradients,
+                           const StressRateInputs* stress_inputs) {
   return with_kernel(options.kernel, [&](auto kernel) {
     using K = decltype(kernel);
     const bool artificial = options.solid && options.artificial_stress.on();
     if (options.mirror.any()) {
       if (artificial) {
         return rates_impl<K, true, true, true>(particles, pairs, options, workspace, gradients, selection,
-                                               stress_inputs);
+                                               neighbourhood, stress_inputs);
       }
       return options.solid ? rates_impl<K, true, true>(particles, pairs, options, workspace, gradients,
-                                                       selection, stress_inputs)
+                                                       selection, neighbourhood, stress_inputs)
                            : rates_impl<K, false, true>(particles, pairs, options, workspace, gradients,
-                                                        selection, stress_inputs);
+                                                        selection, neighbourhood, stress_inputs);
     }
     if (artificial) {
       return rates_impl<K, true, false, true>(particles, pairs, options, workspace, gradients, selection,
-                                              stress_inputs);
+                                              neighbourhood, stress_inputs);
     }
     return options.solid ? rates_impl<K, true, false>(particles, pairs, options, workspace, gradients,
-                                                      selection, stress_inputs)
+                                                      selection, neighbourhood, stress_inputs)
                          : rates_impl<K, false, false>(particles, pairs, options, workspace, gradients,
-                                                       selection, stress_inputs);
+                                                       selection, neighbourhood, stress_inputs);
   });
 }
 
@@ -527,21 +532,24 @@ RateSummary compute_rates(Particles& particles, const PairList& pairs, const Rat
                           RateWorkspace& workspace, const ParticleSelection& selection,
                           VelocityGradients* gradients) {
   if (gradients != nullptr) gradients->resize(particles.size());
-  return dispatch_rates(particles, pairs, options, workspace, selection, gradients, nullptr);
+  return dispatch_rates(particles, pairs, options, workspace, selection,
+                        ParticleSelection::all(particles.size()), gradients, nullptr);
 }
 
 RateSummary compute_rates_and_stress_rates(Particles& particles, const PairList& pairs,
                                            const RateOptions& options, RateWorkspace& workspace,
                                            const ParticleSelection& selection,
                                            std::span<const double> shear_modulus,
-                                           std::span<const Material> materials) {
+                                           std::span<const Material> materials,
+                                           const ParticleSelection* neighbourhood) {
   if (options.solid && shear_modulus.size() != particles.size()) {
     throw std::invalid_argument("compute_rates_and_stress_rates: " + std::to_string(shear_modulus.size()) +
                                 " shear moduli for " + std::to_string(particles.size()) + " particles");
   }
   const StressRateInputs stress{shear_modulus.data(), materials.data()};
-  return dispatch_rates(particles, pairs, options, workspace, selection, nullptr,
-                        options.solid ? &stress : nullptr);
+  return dispatch_rates(particles, pairs, options, workspace, selection,
+                        neighbourhood != nullptr ? *neighbourhood : ParticleSelection::all(particles.size()),
+                        nullptr, options.solid ? &stress : nullptr);
 }
 
 }  // namespace craterkit::sph

@@ -440,7 +440,7 @@ void Simulation::evaluate_rates(const ParticleSelection& rates_for, const Partic
     // Solids: the pair pass writes the stress rates itself, so that no velocity gradient is held.
     rate_summary_ = rate_options_.solid
                         ? compute_rates_and_stress_rates(p, pairs, rate_options_, rate_workspace_, rates_for,
-                                                         shear_modulus_, problem_.materials)
+                                                         shear_modulus_, problem_.materials, &state_for)
                         : compute_rates(p, pairs, rate_options_, rate_workspace_, rates_for);
     if (porous_) compute_distention_rates(p, problem_.materials, rates_for);
   }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <string>
@@ -27,6 +28,30 @@ TEST(BlockLevel, SmallestLevelWithinTheLimit) {
   EXPECT_GT(block_level(1.0, 0.0), block_finest_level_limit);
   EXPECT_GT(block_level(1.0, 1e-300), block_finest_level_limit);
   EXPECT_GT(block_level(1.0, std::nan("")), block_finest_level_limit);  // NaN: an error, not level 0
+}
+
+// The level by its definition, the smallest l >= 0 with block 2^-l <= step, counted up one level at a time
+// with ldexp, against block_level (which starts from log2 of the ratio and multiplies by 2^-l from a table),
+// over blocks and steps spread across many octaves and placed on and next to the levels.
+TEST(BlockLevel, AgreesWithTheDefinitionEverywhere) {
+  const auto by_definition = [](double block, double step) {
+    int level = 0;
+    while (std::ldexp(block, -level) > step && level <= block_finest_level_limit) ++level;
+    return level;
+  };
+  std::uint64_t state = 12345;
+  const auto uniform = [&state] {  // 64-bit LCG (Knuth), top 53 bits
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) * 0x1p-53;
+  };
+  for (int k = 0; k < 20000; ++k) {
+    const double block = std::ldexp(0.5 + uniform(), static_cast<int>(80 * uniform()) - 40);
+    double step = block * std::exp2(-60.0 * uniform());
+    if (k % 4 == 1) step = std::ldexp(block, -static_cast<int>(50 * uniform()));  // exactly on a level
+    if (k % 4 == 2)
+      step = std::nextafter(std::ldexp(block, -static_cast<int>(50 * uniform())), 0.0);  // below
+    ASSERT_EQ(block_level(block, step), by_definition(block, step)) << "block " << block << ", step " << step;
+  }
 }
 
 namespace {

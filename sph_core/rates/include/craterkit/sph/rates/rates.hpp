@@ -177,12 +177,15 @@ RateSummary compute_rates(Particles& particles, const PairList& pairs, const Rat
 // rates as compute_stress_rates() would (store_stress_rate, stress_rates.hpp) from the corrected velocity
 // gradient it has just computed. Why: the gradient is then not stored, so a solver that needs nothing else of
 // it holds no VelocityGradients (9 doubles, 72 bytes per particle). shear_modulus as update_material_state()
-// fills it; materials[m] is material id m (for the strain that weakens its cohesion).
+// fills it; materials[m] is material id m (for the strain that weakens its cohesion). `neighbourhood`, if
+// given, holds the selected particles and every neighbour of theirs within the support (the particles whose
+// state the pass reads): the per-particle half of the stress force is computed for those alone.
 RateSummary compute_rates_and_stress_rates(Particles& particles, const PairList& pairs,
                                            const RateOptions& options, RateWorkspace& workspace,
                                            const ParticleSelection& selection,
                                            std::span<const double> shear_modulus,
-                                           std::span<const Material> materials);
+                                           std::span<const Material> materials,
+                                           const ParticleSelection* neighbourhood = nullptr);
 
 [[nodiscard]] std::string_view viscosity_switch_name(ViscositySwitch s) noexcept;
 
