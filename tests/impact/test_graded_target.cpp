@@ -77,7 +77,7 @@ ImpactSetup small_uniform() {
 }
 
 GradedSpacing spacing_of(const ImpactSummary& m) {
-  return {m.inner_spacing, m.inner_radius, m.grading, m.particle_spacing};
+  return {m.inner_spacing, m.inner_radius, m.grading, m.particle_spacing, m.far_radius, m.far_spacing};
 }
 
 GradedLayout layout_of(const ImpactSummary& m) {
@@ -332,6 +332,86 @@ TEST(GradedTarget, NeighbourNumbersStayWithinTheEnginesBand) {
   }
 }
 
+// Far coarsening (far_radius, far_spacing): from the first shell at or beyond r_f the shells grow again by
+// (1 + s) per shell up to dx_far. The cells still tile the hemisphere to rounding, the local spacing law
+// dx(r) of graded_spacing.hpp still describes the particles (nearest neighbour within 0.8-1.1 dx(r)), the
+// neighbour numbers of the coarse zone stay in the engine's +-25 % band, there are fewer particles than
+// without it, and the default fixed shell covers the support of the spacing at R_dom.
+TEST(GradedTarget, FarCoarseningGrowsTheOuterShellsAgainWithinTheEnginesBand) {
+  const double R = 6.0, dx_max = 0.25, dx0 = 0.05, grading = 0.1;
+  ImpactSetup setup = graded_setup(R, dx_max, dx0, grading);
+  const std::size_t uniform_outside = make_impact(setup, eta, 1.0, ryugu_gravity).summary.target_particles;
+  setup.far_radius = 3.5;
+  setup.far_spacing = 0.5;
+  const ImpactScenario sc = make_impact(setup, eta, 1.0, ryugu_gravity);
+  const Particles& p = sc.problem.particles;
+  const ImpactSummary& m = sc.summary;
+  const GradedSpacing law = spacing_of(m);
+  ASSERT_TRUE(law.coarsened());
+  const GradedLayout layout = layout_of(m);
+  std::printf(
+      "far coarsening: %zu target particles (%zu without), %zu coarse shells from r = %.3f m, "
+      "fixed shell %.3f m\n",
+      m.target_particles, uniform_outside, m.coarse_shells, m.far_shells_radius, m.fixed_shell_thickness);
+  EXPECT_LT(static_cast<double>(m.target_particles), 0.75 * static_cast<double>(uniform_outside));
+  // The shells: dx_max up to r_f, then each (1 + s) times the one before, capped at dx_far.
+  ASSERT_GT(m.coarse_shells, 2u);
+  const std::size_t first = layout.shells.size() - m.coarse_shells;
+  // (the layout stretches all shells by f about the core radius so that the last one ends at R_dom; the rule
+  // applies to the unstretched edges)
+  const auto unstretched = [&](double edge) {
+    return layout.core_radius + (edge - layout.core_radius) / layout.thickness_scale;
+  };
+  EXPECT_LT(unstretched(layout.shells[first - 1].inner), setup.far_radius);
+  EXPECT_GE(unstretched(layout.shells[first].inner), setup.far_radius * (1.0 - 1e-12));
+  for (std::size_t k = first; k < layout.shells.size(); ++k) {
+    const double t = layout.shells[k].thickness(), before = layout.shells[k - 1].thickness();
+    EXPECT_NEAR(t, std::min(setup.far_spacing * layout.thickness_scale, before * (1.0 + grading)), 1e-12)
+        << k;
+  }
+  double quadrant_volume = 0.0;
+  for (const GradedPoint& q : graded_quadrant_points(layout, eta)) quadrant_volume += q.volume;
+  EXPECT_NEAR(4.0 * quadrant_volume / (2.0 / 3.0 * pi * R * R * R), 1.0, 1e-12);
+  EXPECT_NEAR(m.fixed_shell_thickness, 2.0 * eta * law.at(R), 1e-12);
+
+  const NeighbourLists lists = NeighbourSearch().build(neighbour_input(p), Box{});
+  double nearest_lo = 1e9, nearest_hi = 0.0, count_lo = 1e9, count_hi = 0.0;
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.material[i] != 0) continue;
+    const double r = radius_of(p, i), hi = p.smoothing_length[i];
+    if (r < setup.far_radius) continue;
+    double h_near = hi, nearest = 1e9, count = 0.0;
+    for (const std::uint32_t j : lists.of(i)) {
+      h_near = std::max(h_near, p.smoothing_length[j]);
+      nearest = std::min(nearest, std::hypot(p.x[i] - p.x[j], p.y[i] - p.y[j], p.z[i] - p.z[j]));
+      count += 1.0;
+    }
+    const double support = hi + h_near;
+    if (-p.z[i] < support || r > R - m.fixed_shell_thickness - support) continue;
+    ++checked;
+    nearest_lo = std::min(nearest_lo, nearest / law.at(r));
+    nearest_hi = std::max(nearest_hi, nearest / law.at(r));
+    count_lo = std::min(count_lo, count / lattice_neighbours);
+    count_hi = std::max(count_hi, count / lattice_neighbours);
+  }
+  std::printf("coarse zone: %zu particles, nearest / dx(r) %.3f-%.3f, neighbours / 57.9 %.3f-%.3f\n", checked,
+              nearest_lo, nearest_hi, count_lo, count_hi);
+  EXPECT_GT(checked, 50u);
+  EXPECT_GT(nearest_lo, 0.8);
+  EXPECT_LT(nearest_hi, 1.1);
+  EXPECT_GT(count_lo, 0.75);
+  EXPECT_LT(count_hi, 1.25);
+
+  // The run record carries it (and a run without it writes no such attribute).
+  const RunAttributes a = record_attributes(m, KernelType::cubic_spline);
+  EXPECT_EQ(a.numbers.at("far_radius"), 3.5);
+  const CraterMeasurementOptions o = crater_measurement_options(read_run_record(a, "test"));
+  EXPECT_EQ(o.far_spacing, 0.5);
+  const ImpactScenario plain = make_impact(graded_setup(R, dx_max, dx0, grading), eta, 1.0, ryugu_gravity);
+  EXPECT_EQ(record_attributes(plain.summary, KernelType::cubic_spline).numbers.count("far_radius"), 0u);
+}
+
 // The junction smoothing is what brings the junction's gradient error down (the tests above fail without
 // it: unsmoothed, the staircase of the cubic core against the first shell gives 0.23-0.25 and pairs at
 // 0.63 dx0). It moves only points of its band, by little, keeps the cells and the flat top layer.
@@ -562,6 +642,35 @@ TEST(GradedTarget, TomlKeysAndErrors) {
                 .find("impact.inner_radius: value 0.1 out of range: at least 4 inner_spacing = 0.2"),
             std::string::npos);
   EXPECT_NE(parse_error("[impact]\ninner_spacing = -0.05\n").find("impact.inner_spacing"), std::string::npos);
+  // The far coarsening: both keys, a graded target, a coarser spacing, beyond the graded zone.
+  const ImpactSetup far = parse_impact_setup(
+      TomlTable::parse("[impact]\nparticle_spacing = 0.35\ninner_spacing = 0.028\nfar_radius = 9\n"
+                       "far_spacing = 0.7\n",
+                       "test.toml")
+          .table("impact"));
+  EXPECT_EQ(far.far_radius, 9.0);
+  EXPECT_EQ(far.far_spacing, 0.7);
+  EXPECT_NE(parse_error("[impact]\ninner_spacing = 0.05\nfar_spacing = 0.5\n")
+                .find("impact.far_radius: missing: far_radius and far_spacing go together"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[impact]\nfar_radius = 9\nfar_spacing = 0.5\n")
+                .find("impact.far_radius: given but inner_spacing = 0"),
+            std::string::npos);
+  EXPECT_NE(parse_error("[impact]\nparticle_spacing = 0.25\ninner_spacing = 0.05\nfar_radius = 9\n"
+                        "far_spacing = 0.25\n")
+                .find("impact.far_spacing: value 0.25 out of range: must be above particle_spacing (0.25 m)"),
+            std::string::npos);
+  ImpactSetup inside = graded_setup(6.0, 0.25, 0.05, 0.1);
+  inside.far_radius = 1.0;  // inside the graded zone, which reaches dx_max at about 2.7 m
+  inside.far_spacing = 0.5;
+  try {
+    (void)make_impact(inside, eta, 1.0, ryugu_gravity);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("impact.far_radius: value 1 out of range: at least"),
+              std::string::npos)
+        << e.what();
+  }
   // make_impact checks the same for a set-up built in code.
   ImpactSetup bad = graded_setup(3.0, 0.25, 0.05, 0.25);
   EXPECT_THROW((void)make_impact(bad, eta, 1.0, ryugu_gravity), InputError);

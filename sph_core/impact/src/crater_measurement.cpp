@@ -60,7 +60,8 @@ LocalSteps resolve_settings(const CraterMeasurementOptions& o, CraterMeasurement
   m.kernel = o.kernel;
   m.centre = o.centre;
   m.quarter_symmetric = o.quarter_symmetric;
-  const GradedSpacing local{o.inner_spacing, o.inner_radius, o.grading, o.particle_spacing};
+  const GradedSpacing local{o.inner_spacing,    o.inner_radius, o.grading,
+                            o.particle_spacing, o.far_radius,   o.far_spacing};
   const double spacing0 = local.at(0.0);
   m.inner_spacing = local.graded() ? o.inner_spacing : o.particle_spacing;
   m.inner_radius = local.graded() ? o.inner_radius : 0.0;

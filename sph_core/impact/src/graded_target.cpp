@@ -166,10 +166,18 @@ GradedLayout graded_layout(const GradedSpacing& spacing, double domain_radius) {
   // Thicknesses by the growth rule until the shells pass R_dom.
   std::vector<double> thickness;
   double edge = out.core_radius, t = dx0;
+  // Beyond the far radius the cap is the far spacing: the shells grow again, by the same rule.
+  const bool coarsened = spacing.coarsened();
+  if (coarsened && !(spacing.far_radius >= spacing.outer_radius() && spacing.far_radius < R)) {
+    throw std::invalid_argument("graded_layout: the far radius must lie in [" +
+                                std::to_string(spacing.outer_radius()) +
+                                " m (where the shells reach dx_max), R_dom)");
+  }
   while (edge < R) {
     thickness.push_back(t);
     edge += t;
-    t = std::min(dx_max, t * (1.0 + spacing.grading));
+    t = std::min(coarsened && edge >= spacing.far_radius ? spacing.far_spacing : dx_max,
+                 t * (1.0 + spacing.grading));
   }
   // The shell count whose outer edge lies closest to R_dom (the last shell dropped when that is closer).
   const double length = R - out.core_radius;
@@ -188,6 +196,7 @@ GradedLayout graded_layout(const GradedSpacing& spacing, double domain_radius) {
     edge = shell.outer;
     out.shells.push_back(shell);
     if (thickness[k] < dx_max) out.graded_shells = k + 1;
+    if (thickness[k] > dx_max && out.coarse_shells == 0) out.coarse_shells = thickness.size() - k;
     // The polar cap and the top band must fit (u_cap > u_top): true for r >= 3 t, which R_c >= 4 dx0
     // guarantees as long as the spacing grows no faster than the radius (s <= 0.2).
     if (shell.centre() < 3.0 * shell.thickness()) {

@@ -130,6 +130,26 @@ ImpactSetup parse_impact_setup(TomlTable t) {
                                  format_number(4.0 * s.inner_spacing) + " m (0: 8 inner_spacing)");
     }
   }
+  // Far coarsening (docs/impact_setup.md "Graded resolution"): both keys or neither, graded targets only.
+  const auto far_radius = t.optional_number("far_radius", 0.0, s.domain_radius, true);
+  const auto far_spacing = t.optional_number("far_spacing", 0.0, s.domain_radius / 8.0, true);
+  if (far_radius || far_spacing) {
+    if (s.inner_spacing == 0.0) {
+      t.fail(far_radius ? "far_radius" : "far_spacing", "given but inner_spacing = 0 (uniform lattice)");
+    }
+    if (!far_radius || !far_spacing) {
+      t.fail(far_radius ? "far_spacing" : "far_radius",
+             std::string("missing: far_radius and far_spacing go together (") +
+                 (far_radius ? "far_radius" : "far_spacing") + " is given)");
+    }
+    s.far_radius = *far_radius;
+    s.far_spacing = *far_spacing;
+    if (!(s.far_spacing > s.particle_spacing)) {
+      t.fail("far_spacing", "value " + format_number(s.far_spacing) +
+                                " out of range: must be above particle_spacing (" +
+                                format_number(s.particle_spacing) + " m), the spacing it grows from");
+    }
+  }
   s.fixed_shell_thickness =
       t.number("fixed_shell_thickness", s.fixed_shell_thickness, 0.0, s.domain_radius / 4.0);
   const std::string symmetry = t.text("symmetry", symmetry_name(s.symmetry), {"full", "quarter"});

@@ -56,6 +56,8 @@ ImpactRunRecord make_run_record(const ImpactSummary& s, KernelType kernel, const
   r.inner_spacing = s.inner_spacing;
   r.grading = s.grading;
   r.inner_radius = s.inner_radius;
+  r.far_radius = s.far_radius;
+  r.far_spacing = s.far_spacing;
   r.domain_radius = s.domain_radius;
   r.fixed_shell_thickness = s.fixed_shell_thickness;
   r.gravity = s.gravity;
@@ -88,6 +90,10 @@ ImpactRunRecord make_run_record(const ImpactSummary& s, KernelType kernel, const
 RunAttributes run_record_attributes(const ImpactRunRecord& r) {
   RunAttributes a;
   for (const auto& [key, value] : numbers_of(r)) a.numbers[key] = *value;
+  if (r.far_radius > 0.0) {  // only then: files of runs without it read as before
+    a.numbers["far_radius"] = r.far_radius;
+    a.numbers["far_spacing"] = r.far_spacing;
+  }
   std::string names;
   for (const auto& b : r.boulders) {
     a.numbers[boulder_key(b.name, "material")] = b.material;
@@ -112,6 +118,10 @@ bool is_impact_run(const RunAttributes& a) {
 ImpactRunRecord read_run_record(const RunAttributes& a, const std::string& source) {
   ImpactRunRecord r;
   for (const auto& [key, value] : numbers_of(r)) *value = a.number(key, source);
+  if (a.numbers.contains("far_radius")) {
+    r.far_radius = a.number("far_radius", source);
+    r.far_spacing = a.number("far_spacing", source);
+  }
   const std::string& kernel = a.text("kernel", source);
   if (kernel != "cubic_spline" && kernel != "wendland_c2") {
     throw InputError(source + ": attribute kernel = \"" + kernel + "\" is not a kernel of craterkit");
@@ -154,6 +164,8 @@ CraterMeasurementOptions crater_measurement_options(const ImpactRunRecord& r) {
     m.inner_spacing = r.inner_spacing;
     m.inner_radius = r.inner_radius;
     m.grading = r.grading;
+    m.far_radius = r.far_radius;
+    m.far_spacing = r.far_spacing;
   }
   m.kernel = r.kernel;
   m.quarter_symmetric = r.symmetry == DomainSymmetry::quarter;

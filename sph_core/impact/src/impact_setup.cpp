@@ -69,6 +69,16 @@ void validate_grading(const ImpactSetup& s) {
                              " out of range: at least 4 inner_spacing = " +
                              number_text(4.0 * s.inner_spacing) + " m (0: 8 inner_spacing)");
   }
+  if (s.far_radius == 0.0 && s.far_spacing == 0.0) return;
+  if (!(s.far_radius > 0.0 && s.far_radius < s.domain_radius)) {
+    fail("far_radius", "value " + number_text(s.far_radius) + " out of range: allowed (0, " +
+                           number_text(s.domain_radius) + ") inside the domain, with far_spacing");
+  }
+  if (!(s.far_spacing > s.particle_spacing) || !std::isfinite(s.far_spacing)) {
+    fail("far_spacing", "value " + number_text(s.far_spacing) +
+                            " out of range: must be above particle_spacing (" +
+                            number_text(s.particle_spacing) + " m), the spacing it grows from");
+  }
 }
 
 bool is_graded(const ImpactSetup& s) {
@@ -82,6 +92,11 @@ double projectile_spacing(const ImpactSetup& s) {
 
 double core_radius_of(const ImpactSetup& s) {
   return s.inner_radius > 0.0 ? s.inner_radius : 8.0 * s.inner_spacing;
+}
+
+// The local spacing law of a graded target (graded_spacing.hpp), with the far coarsening if asked for.
+GradedSpacing graded_spacing_of(const ImpactSetup& s) {
+  return {s.inner_spacing, core_radius_of(s), s.grading, s.particle_spacing, s.far_radius, s.far_spacing};
 }
 
 std::size_t add_particle(Particles& p, double x, double y, double z) {
@@ -168,7 +183,7 @@ void build_lattice_target(const ImpactSetup& s, double alpha, double g, double s
 void build_graded_target(const ImpactSetup& s, double eta, double alpha, double g, double shell,
                          ProblemSetup& problem, ImpactSummary& summary) {
   const double R = s.domain_radius;
-  const GradedSpacing spacing{s.inner_spacing, core_radius_of(s), s.grading, s.particle_spacing};
+  const GradedSpacing spacing = graded_spacing_of(s);
   if (spacing.inner_radius > 0.5 * R) {
     fail("inner_radius", "value " + number_text(spacing.inner_radius) +
                              " out of range: at most R_dom / 2 = " + number_text(0.5 * R) + " m");
@@ -180,6 +195,11 @@ void build_graded_target(const ImpactSetup& s, double eta, double alpha, double 
     fail("inner_radius", "value " + number_text(spacing.inner_radius) + " would give about " +
                              number_text(core_estimate) + " core particles at inner_spacing " +
                              number_text(s.inner_spacing) + " m (at most 4e8)");
+  }
+  if (spacing.coarsened() && !(spacing.far_radius >= spacing.outer_radius())) {
+    fail("far_radius", "value " + number_text(spacing.far_radius) + " out of range: at least " +
+                           number_text(spacing.outer_radius()) +
+                           " m, where the shells reach particle_spacing (the end of the graded zone)");
   }
   GradedLayout layout;
   try {
@@ -203,6 +223,13 @@ void build_graded_target(const ImpactSetup& s, double eta, double alpha, double 
   summary.graded_shells = layout.graded_shells;
   summary.graded_radius =
       layout.graded_shells < layout.shells.size() ? layout.shells[layout.graded_shells].inner : R;
+  if (spacing.coarsened()) {
+    summary.far_radius = spacing.far_radius;
+    summary.far_spacing = spacing.far_spacing;
+    summary.coarse_shells = layout.coarse_shells;
+    summary.far_shells_radius =
+        layout.coarse_shells > 0 ? layout.shells[layout.shells.size() - layout.coarse_shells].inner : R;
+  }
   summary.min_smoothing_length = std::numeric_limits<double>::infinity();
   summary.max_smoothing_length = 0.0;
 
@@ -456,11 +483,14 @@ ImpactScenario make_impact(const ImpactSetup& s, double eta, double alpha,
   const double dx = s.particle_spacing;
   const double R = s.domain_radius;
   const double h = eta * dx;
-  const double shell = s.fixed_shell_thickness > 0.0 ? s.fixed_shell_thickness : 2.0 * h;
-  if (s.fixed_shell_thickness > 0.0 && shell < 2.0 * h * (1.0 - 1e-12)) {
-    fail("fixed_shell_thickness",
-         "value " + number_text(shell) +
-             " out of range: at least two smoothing lengths, 2 eta dx = " + number_text(2.0 * h) + " m");
+  // The smoothing length at the boundary: of dx_max, or with the far coarsening of the spacing at R_dom.
+  const GradedSpacing local = graded_spacing_of(s);
+  const double h_edge = local.coarsened() ? eta * local.at(R) : h;
+  const double shell = s.fixed_shell_thickness > 0.0 ? s.fixed_shell_thickness : 2.0 * h_edge;
+  if (s.fixed_shell_thickness > 0.0 && shell < 2.0 * h_edge * (1.0 - 1e-12)) {
+    fail("fixed_shell_thickness", "value " + number_text(shell) +
+                                      " out of range: at least two smoothing lengths at R_dom, 2 eta dx = " +
+                                      number_text(2.0 * h_edge) + " m");
   }
   if (R < 4.0 * shell) {
     fail("domain_radius", "value " + number_text(R) + " too small: at least 4 fixed-shell thicknesses (" +
@@ -618,6 +648,10 @@ std::string describe_impact(const ImpactSummary& s) {
     if (s.graded_shells < s.shells) {
       o << " to dx_max = " << s.particle_spacing << " m at r = " << s.graded_radius << " m ("
         << s.graded_shells << " graded shells)";
+      if (s.coarse_shells > 0) {
+        o << ", growing again from r = " << s.far_shells_radius << " m towards dx_far = " << s.far_spacing
+          << " m (" << s.coarse_shells << " shells, far_radius " << s.far_radius << " m)";
+      }
     } else {
       o << ", reaching dx = " << spacing.at(s.domain_radius) << " m at R_dom (dx_max = " << s.particle_spacing
         << " m not reached)";

@@ -271,8 +271,8 @@ SolidFields stress_force_pass(const Particles& p, const RateOptions& options, Ra
   }
   const auto count = static_cast<std::int64_t>(neighbourhood.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t k = 0; k < count; ++k) {
-    const std::size_t i = neighbourhood.at(static_cast<std::size_t>(k));
+  for (std::int64_t kk = 0; kk < count; ++kk) {
+    const std::size_t i = neighbourhood.at(static_cast<std::size_t>(kk));
     const double inv_rho2 = inv_rho_all[i] * inv_rho_all[i];
     const double P = pressure_all[i];
     const double s_xx = sxx[i] - P, s_xy = sxy[i], s_xz = sxz[i], s_yy = syy[i] - P, s_yz = syz[i];

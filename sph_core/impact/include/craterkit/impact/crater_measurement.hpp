@@ -101,13 +101,14 @@ BoulderSpec boulder_from_particles(const sph::Particles& initial, std::string na
 struct CraterMeasurementOptions {
   double rho_initial = 0.0;       // kg/m^3, initial bulk density of the homogeneous matrix (> 0)
   double particle_spacing = 0.0;  // m, initial lattice spacing (> 0): sets the default resolutions
-  // Graded-resolution target (graded_spacing.hpp; the impact set-up's inner_spacing, inner_radius and
-  // grading, particle_spacing the outer spacing): the defaulted radial, vertical and wall-depth steps,
-  // the rim warning and the resolution term of the uncertainty then follow the local spacing dx(r) at
-  // each sample radius instead of particle_spacing. 0: uniform.
+  // Graded-resolution target (graded_spacing.hpp; the impact set-up's inner_spacing, inner_radius,
+  // grading and far coarsening, particle_spacing the outer spacing): the defaulted radial, vertical and
+  // wall-depth steps, the rim warning and the resolution term of the uncertainty then follow the local
+  // spacing dx(r) at each sample radius instead of particle_spacing. 0: uniform.
   double inner_spacing = 0.0;  // m
   double inner_radius = 0.0;   // m
   double grading = 0.0;
+  double far_radius = 0.0, far_spacing = 0.0;              // m, the far coarsening (0: none)
   sph::KernelType kernel = sph::KernelType::cubic_spline;  // the kernel of the simulation
   std::array<double, 2> centre{0.0, 0.0};                  // m, impact point (x, y) on the pre-impact plane
   double max_radius = 0.0;      // m, outer end of every ray; 0: (horizontal extent of the target

@@ -9,9 +9,10 @@
 //  - Shells: hemispherical shells (below z = 0) around the impact point, starting at the core radius
 //    rho_0, the radius of the hemisphere whose volume is that of the core cells (so that the volumes tile
 //    the hemisphere exactly; the cubic core's boundary is a staircase within sqrt(3)/2 dx0 of r = R_c).
-//    Thicknesses dx_0 = dx0, dx_{k+1} = min(dx_max, dx_k (1 + s)), then dx_max out to R_dom; all of them
-//    are multiplied by one common factor f (the one closest to 1 over the possible shell counts) so that
-//    the last shell ends exactly at R_dom (|f - 1| <= dx_max / (2 (R_dom - rho_0))).
+//    Thicknesses dx_0 = dx0, dx_{k+1} = min(dx_max, dx_k (1 + s)), then dx_max out to R_dom (with the far
+//    coarsening, from the first shell starting at or beyond r_f: dx_{k+1} = min(dx_far, dx_k (1 + s))); all
+//    of them are multiplied by one common factor f (the one closest to 1 over the possible shell counts) so
+//    that the last shell ends exactly at R_dom (|f - 1| <= dx_max / (2 (R_dom - rho_0))).
 //  - Rings: on a shell of centre radius r and thickness t, with u = cos(theta) = -z/r (theta the polar
 //    angle from the downward vertical):
 //      polar cap: four cells of area t^2, 1 - u < 2 t^2 / (pi r^2), their points t/sqrt(2) from the axis
@@ -61,10 +62,12 @@ struct GradedLayout {
   std::size_t core_cells = 0;  // core nodes below z = 0 in the full hemisphere
   std::vector<GradedShell> shells;
   std::size_t graded_shells = 0;  // shells before the first one at the outer spacing
+  std::size_t coarse_shells = 0;  // the last shells, thicker than the outer spacing (spacing.coarsened())
   double thickness_scale = 1.0;   // f
 };
 
-// Throws std::invalid_argument unless spacing.graded() and 4 dx0 <= R_c < R_dom - 4 dx_max.
+// Throws std::invalid_argument unless spacing.graded() and 4 dx0 <= R_c < R_dom - 4 dx_max, and, with the
+// far coarsening, spacing.outer_radius() <= r_f < R_dom.
 GradedLayout graded_layout(const GradedSpacing& spacing, double domain_radius);
 
 struct GradedPoint {

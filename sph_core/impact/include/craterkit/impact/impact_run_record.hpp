@@ -32,10 +32,11 @@ struct ImpactRunRecord {
   double inner_spacing = 0.0;         // m; the projectile's lattice spacing (= particle_spacing when uniform)
   double grading = 0.0;               // growth of the spacing per spacing outward (0: uniform)
   double inner_radius = 0.0;          // m, the uniform core of a graded target (0 when uniform)
-  double domain_radius = 0.0;         // m
-  double fixed_shell_thickness = 0.0;  // m
-  double gravity = 0.0;                // m/s^2, downward
-  double escape_speed = 0.0;           // m/s (0: not used)
+  double far_radius = 0.0, far_spacing = 0.0;  // m, the far coarsening (0: none; absent from older files)
+  double domain_radius = 0.0;                  // m
+  double fixed_shell_thickness = 0.0;          // m
+  double gravity = 0.0;                        // m/s^2, downward
+  double escape_speed = 0.0;                   // m/s (0: not used)
   sph::KernelType kernel = sph::KernelType::cubic_spline;
   DomainSymmetry symmetry = DomainSymmetry::full;
   std::vector<RecordedBoulder> boulders;

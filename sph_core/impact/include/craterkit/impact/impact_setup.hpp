@@ -53,7 +53,11 @@
 //    radius is max(a, 2 dx0));
 //  - lithostatic state per particle, integrated down its own column (x, y) from the top of the material
 //    above it (z = 0, or the top of a boulder) through the materials met (lithostatic_pressure_adaptive);
-//  - the fixed shell is r > R_dom - shell_thickness as on the lattice (default 2 eta dx_max).
+//  - far coarsening (far_radius r_f > 0): from the first shell at or beyond r_f the shells grow again by
+//    (1 + grading) per shell up to dx_far = far_spacing, so that the particles far from the crater, which
+//    barely move but cost the late stage most of its particle updates, are fewer and take longer steps;
+//  - the fixed shell is r > R_dom - shell_thickness as on the lattice (default 2 eta dx, dx the spacing at
+//    R_dom: dx_max, or with the far coarsening the last shell's).
 //
 // Initial state: lithostatic (lithostatic.hpp), integrated down each lattice column from the top of its
 // highest node through the materials it meets; bulk density from the EOS at E = 0, distention alpha0
@@ -93,13 +97,15 @@ struct ImpactSetup {
   double impact_speed = 2000.0;        // U, m/s
   double impact_angle = 0.0;           // theta from the vertical, degrees, [0, 90)
   ProjectileModel projectile_model = ProjectileModel::point_source_stand_in;
-  double stand_in_radius = 0.0;        // a_s, m; 0: max(a, 2 dx)
-  double coupling_exponent = 0.4;      // nu of the coupling parameter a delta^nu U^mu
-  double domain_radius = 15.0;         // R_dom, m
-  double particle_spacing = 0.25;      // dx, m (graded: the outer, largest spacing dx_max)
-  double inner_spacing = 0.0;          // dx0, m; 0: uniform lattice; 0 < dx0 < particle_spacing: graded
-  double grading = 0.06;               // s, growth of the spacing per spacing outward, (0, 0.2] (graded)
-  double inner_radius = 0.0;           // R_c, m, the uniform core (graded); 0: 8 dx0; >= 4 dx0
+  double stand_in_radius = 0.0;    // a_s, m; 0: max(a, 2 dx)
+  double coupling_exponent = 0.4;  // nu of the coupling parameter a delta^nu U^mu
+  double domain_radius = 15.0;     // R_dom, m
+  double particle_spacing = 0.25;  // dx, m (graded: the outer, largest spacing dx_max)
+  double inner_spacing = 0.0;      // dx0, m; 0: uniform lattice; 0 < dx0 < particle_spacing: graded
+  double grading = 0.06;           // s, growth of the spacing per spacing outward, (0, 0.2] (graded)
+  double inner_radius = 0.0;       // R_c, m, the uniform core (graded); 0: 8 dx0; >= 4 dx0
+  double far_radius = 0.0;   // r_f, m (graded): beyond it the spacing grows again to far_spacing; 0: none
+  double far_spacing = 0.0;  // dx_far, m, > particle_spacing (with far_radius)
   double fixed_shell_thickness = 0.0;  // m; 0: 2 eta dx (two smoothing lengths, the kernel support)
   DomainSymmetry symmetry = DomainSymmetry::full;
   double transition_time = 0.0;              // t_transition, s; 0: 10 R_dom / c
@@ -134,7 +140,9 @@ struct ImpactSummary {
   double inner_radius = 0.0;   // R_c, m
   double core_radius = 0.0;    // rho_0, m: the hemisphere with the volume of the core cells
   double graded_radius = 0.0;  // m, where the shells reach the outer spacing (end of the graded zone)
-  std::size_t shells = 0, graded_shells = 0;
+  double far_radius = 0.0, far_spacing = 0.0;  // m (0: no far coarsening)
+  double far_shells_radius = 0.0;              // m, inner edge of the first shell thicker than dx_max
+  std::size_t shells = 0, graded_shells = 0, coarse_shells = 0;
   double min_smoothing_length = 0.0, max_smoothing_length = 0.0;  // m, over the target and boulders
   double gravity = 0.0;                                           // g, m/s^2 (gravity vector (0, 0, -g))
   double initial_bulk_density = 0.0;      // rho0 / alpha0 of the target at P = 0, kg/m^3
