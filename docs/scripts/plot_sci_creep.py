@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""The SCI crater's radius after its end of growth, for the runs of docs/validation.md ("Why the crater
+walls creep"): data/validation/sci_creep_growth.csv (columns run,time_s,crater_radius_m).
+
+    /usr/bin/python3 docs/scripts/plot_sci_creep.py data/validation/sci_creep_growth.csv docs/figures/sci_creep.png
+"""
+import csv
+import sys
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+LABELS = {
+    "cohesionless": "cohesionless (this engine)",
+    "tensile_porosity": "+ tensile porosity from 250 s",
+    "friction_0.8": "f = 0.8 from 250 s",
+    "cohesion_0.05": "Y0 = 0.05 Pa (not weakened) from 250 s",
+    "cohesion_0.5": "Y0 = 0.5 Pa (not weakened) from 250 s",
+    "strength_floor_0.09": "Y = f max(P, 0.09 Pa) from t = 0",
+    "cohesionless_dx0.5": "dx_max = 0.5 m: cohesionless (sci.toml)",
+    "strength_floor_0.045_dx0.5": "dx_max = 0.5 m: Y = f max(P, 0.045 Pa)",
+}
+
+
+def main(source, figure):
+    curves = defaultdict(list)
+    with open(source, newline="") as f:
+        for row in csv.DictReader(f):
+            if row["crater_radius_m"] not in ("", "nan"):
+                curves[row["run"]].append((float(row["time_s"]), float(row["crater_radius_m"])))
+    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    for run, points in curves.items():
+        points.sort()
+        ax.plot([t for t, _ in points], [r for _, r in points], label=LABELS.get(run, run),
+                lw=2.2 if run.startswith("cohesionless") else 1.4, ls="--" if run.endswith("dx0.5") else "-")
+    ax.set_xlim(100, None)
+    ax.set_ylim(6.3, 7.3)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("crater radius (m)")
+    ax.set_title("SCI crater: the radius after the end of growth (solid 1.0 m, dashed 0.5 m)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    fig.savefig(figure, dpi=120)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])
