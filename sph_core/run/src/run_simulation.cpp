@@ -116,25 +116,13 @@ void check_resumed_configuration(const std::filesystem::path& path, const RunAtt
   if (configuration.empty()) return;
   const auto stored = checkpoint.texts.find("configuration");
   if (stored == checkpoint.texts.end()) return;  // a checkpoint written before configurations were stored
-  const auto then = configuration_values(stored->second);
-  const auto now = configuration_values(configuration);
-  auto refuse = [&](const std::string& key, const std::string& here, const std::string& there) {
-    throw InputError("--resume: the configuration differs from the one of checkpoint " + path.string() +
-                     " in " + key + ": " + here + " now, " + there +
-                     " in the checkpoint; a resumed run may change only run.end_time, run.max_steps, "
-                     "problem.name, [output] and neighbours.halo_skin. Resume with the checkpoint's "
-                     "configuration, or start the "
-                     "changed run in another --out folder");
-  };
-  for (const auto& [key, value] : now) {
-    if (resumable_configuration_key(key)) continue;
-    const auto old = then.find(key);
-    if (old == then.end()) refuse(key, value, "(not read)");
-    if (old->second != value) refuse(key, value, old->second);
-  }
-  for (const auto& [key, value] : then) {
-    if (!resumable_configuration_key(key) && now.count(key) == 0) refuse(key, "(not read)", value);
-  }
+  const std::string difference = resume_configuration_difference(stored->second, configuration);
+  if (difference.empty()) return;
+  throw InputError("--resume: the configuration differs from the one of checkpoint " + path.string() +
+                   " in " + difference +
+                   " in the checkpoint; a resumed run may change only run.end_time, run.max_steps, "
+                   "problem.name, [output] and neighbours.halo_skin. Resume with the checkpoint's "
+                   "configuration, or start the changed run in another --out folder");
 }
 
 // The material files of a problem, one line "<index> <hash> <file>" per material read from a file: the run
@@ -259,6 +247,33 @@ void summarise(const Simulation& sim, RunSummary& summary) {
 bool resumable_configuration_key(const std::string& key) {
   return key == "run.end_time" || key == "run.max_steps" || key == "problem.name" ||
          key == "neighbours.halo_skin" || key.rfind("output.", 0) == 0;
+}
+
+std::string resume_configuration_difference(const std::string& checkpoint_listing,
+                                            const std::string& current_listing) {
+  const auto then = configuration_values(checkpoint_listing);
+  const auto now = configuration_values(current_listing);
+  // A key that one side did not read (added to or removed from the engine between the two) matches when it is
+  // absent from the file on the other side: a new key's default keeps the behaviour from before it existed.
+  const std::string absent = "(absent)";
+  const std::string not_read = "(not read)";
+  auto describe = [](const std::string& key, const std::string& here, const std::string& there) {
+    return key + ": " + here + " now, " + there;
+  };
+  for (const auto& [key, value] : now) {
+    if (resumable_configuration_key(key)) continue;
+    const auto old = then.find(key);
+    if (old == then.end()) {
+      if (value != absent) return describe(key, value, not_read);
+    } else if (old->second != value) {
+      return describe(key, value, old->second);
+    }
+  }
+  for (const auto& [key, value] : then) {
+    if (!resumable_configuration_key(key) && value != absent && now.count(key) == 0)
+      return describe(key, not_read, value);
+  }
+  return {};
 }
 
 RunSummary run_simulation(const SimulationConfig& config, ProblemSetup problem,

@@ -51,6 +51,13 @@ struct RunOptions {
 // neighbours.halo_skin (which halos a process holds, not what it computes).
 bool resumable_configuration_key(const std::string& key);
 
+// The first key in which two configuration listings ("key = value" lines, RunOptions::configuration) differ
+// in a way a resume may not, as "<key>: <value now> now, <value in the checkpoint>" ("(not read)" for a key
+// one side does not know); empty when they agree. A key only one side read agrees when the other side's file
+// leaves it out ("(absent)"): the default of a key added to the engine keeps the behaviour from before it.
+std::string resume_configuration_difference(const std::string& checkpoint_listing,
+                                            const std::string& current_listing);
+
 struct RunSummary {
   std::string name;
   std::string setup;
