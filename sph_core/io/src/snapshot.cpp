@@ -96,6 +96,7 @@ std::string field_unit(std::string_view field_name) {
       {"correction_yy", "1"},
       {"correction_yz", "1"},
       {"correction_zz", "1"},
+      {"peak_pressure", "Pa"},
   };
   for (const auto& [name, unit] : units) {
     if (name == field_name) return std::string(unit);

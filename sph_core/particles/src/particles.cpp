@@ -29,6 +29,7 @@ void Particles::resize(std::size_t n) {
 std::optional<double> Particles::default_for_absent_field(std::string_view name) {
   if (name == "correction_xx" || name == "correction_yy" || name == "correction_zz") return 1.0;
   if (name == "correction_xy" || name == "correction_xz" || name == "correction_yz") return 0.0;
+  if (name == "peak_pressure") return 0.0;
   return std::nullopt;
 }
 

@@ -30,6 +30,15 @@ std::array<double, 3> periods(const Box& box) {
   return out;
 }
 
+// Particles::peak_pressure of the active particles, from their states at the end of the step: the corrected
+// state, whose pressure the equation of state has just refreshed (predicted states do not count).
+void record_peak_pressure(Particles& p, const ParticleSelection& active) {
+  for (std::size_t k = 0; k < active.size(); ++k) {
+    const std::size_t i = active.at(k);
+    p.peak_pressure[i] = std::max(p.peak_pressure[i], p.pressure[i]);
+  }
+}
+
 }  // namespace
 
 void Simulation::configure() {
@@ -534,6 +543,7 @@ void Simulation::end_substep(const ParticleSelection& active, std::span<const do
     if (porous_) limit_compaction(p, problem_.materials, integrator_workspace_.distention, active);
   }
   update_equation_of_state(active);
+  if (p.solid_fields) record_peak_pressure(p, active);
   particle_updates_ += active.size();
   auto scope = timers_.measure("schedule");
   (void)update_time_steps(p, rate_workspace_.signal_time, parameters, active);
@@ -777,6 +787,7 @@ void Simulation::step(double target_time) {
       }
     }
     update_equation_of_state();
+    if (p.solid_fields) record_peak_pressure(p, ParticleSelection::all(active_));
     particle_updates_ += active_;
   }
   // Every particle's own step limit, before ejection reorders the particles (the signal times of the

@@ -82,6 +82,10 @@ struct Particles {
   // hold it for a bitwise restart.
   std::vector<double> correction_xx, correction_xy, correction_xz, correction_yy, correction_yz,
       correction_zz;
+  // The largest pressure of the particle's states at the ends of its steps, Pa (only while solid_fields): the
+  // peak shock pressure it went through (docs/output.md). A diagnostic; nothing reads it back. Zero in a run
+  // resumed from a file written before the field existed, until the next step.
+  std::vector<double> peak_pressure;
 
   // Whether the solid-mechanics group (strength and porosity) is allocated (and visited by for_each_field).
   bool solid_fields = true;
@@ -151,6 +155,7 @@ struct Particles {
     visit(std::string_view{"correction_yy"}, correction_yy);
     visit(std::string_view{"correction_yz"}, correction_yz);
     visit(std::string_view{"correction_zz"}, correction_zz);
+    visit(std::string_view{"peak_pressure"}, peak_pressure);
   }
   // The value of a field that files written before it existed do not hold (the identity correction
   // matrix), or nullopt for a field every particle file must hold.
