@@ -19,7 +19,11 @@ LABELS = {
     "dx0_0.020": "dx0 = 0.020 m",
     "dx0_0.014": "dx0 = 0.014 m",
     "dx0_0.028_dxmax_1.0": "dx0 = 0.028 m, dx_max = 1.0 m",
-    "dx0_0.028_constant_viscosity": "dx0 = 0.028 m, constant viscosity (no switch)",
+    "dx0_0.010": "dx0 = 0.010 m",
+    "dx0_0.028_constant_viscosity": "constant viscosity, dx0 = 0.028 m",
+    "dx0_0.020_constant_viscosity": "constant viscosity, dx0 = 0.020 m",
+    "dx0_0.014_constant_viscosity": "constant viscosity, dx0 = 0.014 m",
+    "dx0_0.010_constant_viscosity": "constant viscosity, dx0 = 0.010 m",
 }
 ELASTIC_PRESSURE = 1.0e6  # P_e of basalt_matrix_ryugu, Pa
 SOLID_PRESSURE = 213.0e6  # P_s, Pa
@@ -35,7 +39,8 @@ def main(source, figure):
                 run[key].append(float(row[f"{key}_peak_pressure_Pa"]) * 1e-6)
     fig, ax = plt.subplots(figsize=(7, 5))
     for name, run in runs.items():
-        line, = ax.loglog(run["r"], run["median"], "o-", ms=3, label=LABELS.get(name, name))
+        style = "s--" if "constant_viscosity" in name else "o-"
+        line, = ax.loglog(run["r"], run["median"], style, ms=3, lw=1, label=LABELS.get(name, name))
         if name == "dx0_0.028":
             ax.fill_between(run["r"], run["p10"], run["p90"], color=line.get_color(), alpha=0.15,
                             label="10-90 % of the particles, sci.toml")
@@ -48,7 +53,7 @@ def main(source, figure):
     ax.set_xlabel("initial distance from the impact point / projectile radius a")
     ax.set_ylabel("peak pressure (MPa), median per shell")
     ax.set_title("SCI target, peak pressure 10 ms after contact")
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
     fig.savefig(figure, dpi=120)
 
