@@ -24,6 +24,8 @@ LABELS = {
     "dx0_0.020_constant_viscosity": "constant viscosity, dx0 = 0.020 m",
     "dx0_0.014_constant_viscosity": "constant viscosity, dx0 = 0.014 m",
     "dx0_0.010_constant_viscosity": "constant viscosity, dx0 = 0.010 m",
+    "dx0_0.028_switch_no_balsara": "switch without Balsara, dx0 = 0.028 m",
+    "dx0_0.028_constant_viscosity_balsara": "constant viscosity with Balsara, dx0 = 0.028 m",
 }
 ELASTIC_PRESSURE = 1.0e6  # P_e of basalt_matrix_ryugu, Pa
 SOLID_PRESSURE = 213.0e6  # P_s, Pa
@@ -37,9 +39,9 @@ def main(source, figure):
             run["r"].append(float(row["r_over_a"]))
             for key in ("median", "p10", "p90"):
                 run[key].append(float(row[f"{key}_peak_pressure_Pa"]) * 1e-6)
-    fig, ax = plt.subplots(figsize=(7, 5))
+    fig, ax = plt.subplots(figsize=(10.5, 5))
     for name, run in runs.items():
-        style = "s--" if "constant_viscosity" in name else "o-"
+        style = "s--" if "constant_viscosity" in name else ("^:" if "balsara" in name else "o-")
         line, = ax.loglog(run["r"], run["median"], style, ms=3, lw=1, label=LABELS.get(name, name))
         if name == "dx0_0.028":
             ax.fill_between(run["r"], run["p10"], run["p90"], color=line.get_color(), alpha=0.15,
@@ -53,7 +55,7 @@ def main(source, figure):
     ax.set_xlabel("initial distance from the impact point / projectile radius a")
     ax.set_ylabel("peak pressure (MPa), median per shell")
     ax.set_title("SCI target, peak pressure 10 ms after contact")
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     fig.savefig(figure, dpi=120)
 
