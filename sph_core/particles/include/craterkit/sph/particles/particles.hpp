@@ -2,12 +2,13 @@
 // Particle storage: structure-of-arrays, one contiguous std::vector per field, owned by Particles.
 // Phases take the arrays they need (spans), so what each phase reads and writes is visible in its
 // signature. Distention is always present (one when non-porous). The solid-mechanics group
-// (deviatoric stress, accumulated strain and their rates, the distention rate and the kernel-gradient
-// correction matrix: 19 doubles, 152 bytes per particle) is present only while `solid_fields` is true; a run
-// whose materials have neither strength nor porosity drops it (set_solid_fields(false)), and snapshots and
-// checkpoints then simply do not hold it. The distention rate belongs to this group rather than to the core
-// so that fluid runs (Sedov, Sod) carry nothing of the material models; a porous material without strength
-// therefore carries the (zero) stress fields too, a cost paid only in that rare case.
+// (deviatoric stress, accumulated strain and their rates, the distention rate, the kernel-gradient
+// correction matrix and the peak pressure: 20 doubles, 160 bytes per particle) is present only while
+// `solid_fields` is true; a run whose materials have neither strength nor porosity drops it
+// (set_solid_fields(false)), and snapshots and checkpoints then simply do not hold it. The distention rate
+// belongs to this group rather than to the core so that fluid runs (Sedov, Sod) carry nothing of the material
+// models; a porous material without strength therefore carries the (zero) stress fields too, a cost paid only
+// in that rare case.
 //
 // Every field is registered in for_each_field(), which is the single list used by sorting along the
 // space-filling curve, by snapshots and by checkpoints: adding a field means adding one line there.
