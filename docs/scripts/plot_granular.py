@@ -2,8 +2,8 @@
 Usage: /usr/bin/python3 docs/scripts/plot_granular.py DIR docs/figures/granular.png
 DIR holds the CSV files the tests write when CRATERKIT_VALIDATION_OUTPUT=DIR is set:
   CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_granular
-  CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_granular_slow   (deposit_f0*.csv,
-                                                                                  pile_f0*.csv)
+  CRATERKIT_VALIDATION_OUTPUT=DIR build/tests/sph_core/test_engine_granular_slow   (deposit_*.csv,
+                                                                                  pile_f0*.csv, collapse_a150.csv)
 Files that are missing are skipped."""
 import math
 import os
@@ -52,8 +52,8 @@ ax.legend(fontsize=8)
 
 # (b) collapse deposits (surface profiles), normalised by the initial column.
 ax = axes[0, 1]
-for name, label, h0, l0 in (("collapse_a050.csv", "a = 0.5, f = 0.55 (slow)", 0.08, 0.16),
-                            ("collapse_a100.csv", "a = 1, f = 0.55", 0.08, 0.08),
+for name, label, h0, l0 in (("deposit_f055.csv", "a = 0.5, f = 0.55 (slow)", 0.08, 0.16),
+                            ("deposit_a100.csv", "a = 1, f = 0.55 (slow)", 0.08, 0.08),
                             ("collapse_a150.csv", "a = 1.5, f = 0.55", 0.09, 0.06),
                             ("deposit_f040.csv", "a = 0.5, f = 0.4 (slow)", 0.08, 0.16),
                             ("deposit_f070.csv", "a = 0.5, f = 0.7 (slow)", 0.08, 0.16)):
@@ -72,7 +72,7 @@ ax = axes[1, 0]
 a = np.linspace(0, 2, 50)
 ax.plot(a, 1.2 * a, "k-", label="Lube et al. 2005: 1.2 a")
 ax.fill_between(a, 0.96 * a, 1.44 * a, color="k", alpha=0.08, label="+-20 %")
-for name, aspect, marker in (("collapse_a050.csv", 0.5, "D"), ("collapse_a100.csv", 1.0, "o"),
+for name, aspect, marker in (("deposit_f055.csv", 0.5, "D"), ("deposit_a100.csv", 1.0, "o"),
                              ("collapse_a150.csv", 1.5, "s"),
                              ("deposit_f040.csv", 0.5, "^"), ("deposit_f070.csv", 0.5, "v")):
     comment, data = read(name)
@@ -116,15 +116,16 @@ for f, colour in ((0.4, "C0"), (0.55, "C2"), (0.7, "C1")):
     comment, data = read(f"pile_f{round(100 * f):03d}.csv")
     if data is None:
         continue
-    x, z = data[:, 0] / 0.08, data[:, 1] / 0.08
+    h0 = np.median(data[: len(data) // 5, 1])  # the flat top by the back wall (16 or 24 cells of 5 mm)
+    x, z = data[:, 0] / h0, data[:, 1] / h0
     ax.plot(x, z, "-", color=colour, lw=1.2, label=f"f = {f}: flank {flank_of(comment):.1f} deg, theta(f) {theta(f):.1f}")
     # theta(f) through the point of the profile at half the height, on the falling side
     half = np.argmax((z < 0.5 * z.max()) & (np.arange(len(z)) > np.argmax(z)))
     t = math.tan(math.radians(theta(f)))
     ax.plot([x[half] - 0.4 / t, x[half] + 0.4 / t], [z[half] + 0.4, z[half] - 0.4], "--", color=colour, lw=0.8)
 ax.plot([0, 2, 2], [1, 1, 0], "k:", lw=0.8)
-ax.set_xlabel("x / H0")
-ax.set_ylabel("surface height / H0")
+ax.set_xlabel("x / H (H: height of the pile's flat top)")
+ax.set_ylabel("surface height / H")
 ax.set_title("(e) a = 0.5 columns collapsed quasi-statically (dashed: theta(f))")
 ax.set_xlim(0, 3.5)
 ax.legend(fontsize=8)

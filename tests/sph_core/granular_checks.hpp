@@ -179,13 +179,12 @@ inline void check_critical_slope(double friction) {
 // within 20 % of 1.2 a, our reading of the spread of the experimental points about the fit (the papers
 // themselves were not at hand here; the coefficient 1.2 and the bound 1.8 are as quoted in the granular-flow
 // validation, docs/validation.md).
-inline double runout_ratio(int height_cells, int width_cells, double end_units, const std::string& csv,
-                           int floor_cells = 48) {
+inline double runout_ratio(int height_cells, int width_cells, double end_units, const std::string& csv) {
   BlockSetup s;
   s.friction = 0.55;
   s.height_cells = height_cells;
   s.width_cells = width_cells;
-  s.floor_cells = floor_cells;
+  s.floor_cells = 48;
   const Deposit d = run_block(s, end_units);
   const double a = static_cast<double>(height_cells) / width_cells;
   const double L0 = block_width(s);
