@@ -169,36 +169,4 @@ inline void check_critical_slope(double friction) {
   EXPECT_NEAR(tilt.critical_degrees, repose_angle_degrees(friction), 3.0);
 }
 
-// ---------------------------------------------------------------------------------------------------
-// (b) Column collapse run-out against the quasi-2D experiments of Lube et al. (2005, Phys. Rev. E 72,
-// 041301): (L_inf - L0)/L0 = 1.2 a for a = H0/L0 < 1.8 (Lajeunesse et al. 2005, Phys. Fluids 17, 103302,
-// also find run-out linear in a at small a in their channel). A column against the back wall, released
-// at t = 0 from the lithostatic state, f = 0.55 (theta = 29 degrees, a sand); run-out = far edge of the
-// last column of the surface profile holding at least half a layer of particles, measured at rest
-// (rms speed of the grains below 0.01 sqrt(g H0): 8 sqrt(H0/g) for a = 1, 10 for a = 1.5). Accepted:
-// within 20 % of 1.2 a, our reading of the spread of the experimental points about the fit (the papers
-// themselves were not at hand here; the coefficient 1.2 and the bound 1.8 are as quoted in the granular-flow
-// validation, docs/validation.md).
-inline double runout_ratio(int height_cells, int width_cells, double end_units, const std::string& csv) {
-  BlockSetup s;
-  s.friction = 0.55;
-  s.height_cells = height_cells;
-  s.width_cells = width_cells;
-  s.floor_cells = 48;
-  const Deposit d = run_block(s, end_units);
-  const double a = static_cast<double>(height_cells) / width_cells;
-  const double L0 = block_width(s);
-  const double ratio = (runout(d.profile, s.spacing) - L0) / L0;
-  std::printf(
-      "collapse a = %.2f: (L - L0)/L0 = %.3f, Lube 1.2 a = %.3f (%+.1f %%); end speed max %.4f, rms %.5f "
-      "sqrt(gH); %zu particles, %llu steps, %.1f s\n",
-      a, ratio, 1.2 * a, 100.0 * (ratio / (1.2 * a) - 1.0),
-      d.end_speed / std::sqrt(s.gravity * block_height(s)),
-      d.end_rms_speed / std::sqrt(s.gravity * block_height(s)), d.particles,
-      static_cast<unsigned long long>(d.steps), d.wall_seconds);
-  write_profile(d, csv, "collapse a=" + std::to_string(a) + " ratio=" + std::to_string(ratio));
-  EXPECT_LT(d.end_rms_speed, 0.01 * std::sqrt(s.gravity * block_height(s)));  // at rest
-  return ratio;
-}
-
 }  // namespace granular_test

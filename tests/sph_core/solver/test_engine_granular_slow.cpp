@@ -29,14 +29,6 @@ TEST(GranularRepose, TiltedLayerFrictionPointSeven) {
   check_critical_slope(0.7);
 }
 
-// (b) Run-out (granular_checks.hpp), f = 0.55, a = 1.5; a = 0.5 and 1 are the deposits below, which check
-// the run-out and the flank of one collapse. Run for 15 sqrt(H/g): with the corrected stress divergence the
-// deposit is still settling at 10 (rms speed 0.015 sqrt(gH), over the 0.01 of "at rest"; 0.0014 at 15,
-// run-out unchanged at 1.833).
-TEST(GranularCollapse, RunoutAspectRatioOneAndHalf) {
-  EXPECT_NEAR(runout_ratio(18, 12, 15.0, "collapse_a150.csv") / (1.2 * 1.5), 1.0, 0.2);
-}
-
 // A column of aspect ratio a = H0/L0 = 0.5 (height_cells x 2 height_cells, 5 mm cells) against the back wall,
 // released from the lithostatic state. The flank slope is the least-squares line through the surface profile
 // between 20 % and 80 % of the deposit height on the falling side (the undisturbed flat top and the rounded
@@ -128,6 +120,26 @@ TEST(GranularCollapseSlow, DepositFlankAspectRatioOne) {
   const CollapseResult r = collapse(square_column(0.55), 8.0, free_collapse, "deposit_a100.csv");
   EXPECT_NEAR(r.flank.angle_degrees, repose_angle_degrees(0.55), 3.0);
   EXPECT_NEAR(r.runout_ratio / 1.2, 1.0, 0.2);
+}
+
+// (b) Run-out against the quasi-2D experiments of Lube et al. (2005, Phys. Rev. E 72, 041301):
+// (L_inf - L0)/L0 = 1.2 a for a = H0/L0 < 1.8 (Lajeunesse et al. 2005, Phys. Fluids 17, 103302, also find
+// run-out linear in a at small a in their channel); run-out = far edge of the last column of the surface
+// profile holding at least half a layer of particles (granular_setup.hpp, runout), measured at rest.
+// Accepted: within 20 % of 1.2 a, our reading of the spread of the experimental points about the fit (the
+// papers themselves were not at hand here; the coefficient 1.2 and the bound 1.8 are as quoted in
+// docs/validation.md). a = 0.5 and 1 are the deposit tests above; a = 1.5 (18 x 12 cells on a 48-cell floor,
+// f = 0.55) here, run for 15 sqrt(H/g): with the corrected stress divergence the deposit is still settling at
+// 10 (rms speed 0.015 sqrt(gH), over the 0.01 of "at rest"; 0.0014 at 15, run-out unchanged at 1.833). Its
+// flank is not checked: a column this tall leaves no flat top.
+TEST(GranularCollapse, RunoutAspectRatioOneAndHalf) {
+  BlockSetup s;
+  s.friction = 0.55;
+  s.height_cells = 18;
+  s.width_cells = 12;
+  s.floor_cells = 48;
+  const CollapseResult r = collapse(s, 15.0, free_collapse, "collapse_a150.csv");
+  EXPECT_NEAR(r.runout_ratio / (1.2 * 1.5), 1.0, 0.2);
 }
 
 // The same column collapsed quasi-statically: a drag towards rest with the relaxation time
