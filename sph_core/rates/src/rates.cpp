@@ -4,12 +4,14 @@
 #include "craterkit/sph/rates/gradient_correction.hpp"
 #include "craterkit/sph/rates/stress_rates.hpp"
 #include "pair_geometry.hpp"
+#include "pair_lanes.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace craterkit::sph {
 
@@ -23,18 +25,20 @@ std::string_view viscosity_switch_name(ViscositySwitch s) noexcept {
 
 namespace {
 
-using detail::KernelGradient;
 using detail::PairCentre;
 using detail::PairFrame;
 using detail::PairGeometry;
 
 // The pass is an OpenMP loop over the particles i (rates_impl: i's state in, its rates out) around a
-// j-loop over i's neighbour list. Per entry the j-loop runs the prologue of pair_geometry.hpp, then
-// fluid_pair (pressure force, artificial viscosity, continuity, energy; for solids too, whose pressure is
-// in the stress force) and, for solids, solid_pair (the corrected stress force, the artificial stress,
-// the velocity-gradient and kernel-moment sums). The template switches (kernel, solid, mirror planes,
-// artificial stress) are resolved once per call in compute_rates, and the pair bodies are forced inline:
-// each instantiation's j-loop is one loop over the arrays, as written out in one piece.
+// j-loop over i's neighbour list (pair_sums). The j-loop first keeps the entries within the support (the
+// prologue of pair_geometry.hpp per entry, kept without a branch), so that the sums do not depend on which
+// superset of the pairs the lists hold, then takes the kept pairs four at a time (pair_lanes.hpp): the
+// pressure force, artificial viscosity, continuity and energy of every pair (for solids too, whose pressure
+// is in the stress force) and, for solids, the corrected stress force, the artificial stress and the
+// velocity-gradient and kernel-moment sums. The template switches (kernel, solid, mirror planes, artificial
+// stress) are resolved once per call in compute_rates. The j-loop is compiled for AVX2 and for the baseline
+// processor (pair_sums_wide, pair_sums_baseline: the same operations, so the same results), the first used
+// where the processor has it (RateOptions::wide_lanes).
 
 // Particle fields the fluid pair body reads of j (and the driver of i): structure of arrays over every
 // particle, as Particles and RateWorkspace hold them.
@@ -86,62 +90,6 @@ struct FluidSums {
   double curl_x = 0.0, curl_y = 0.0, curl_z = 0.0;  // sum_j V_j (v_j - v_i) x grad_i W_ij (Balsara, fluids)
 };
 
-// v_ij = v_i - v_j, j's image.
-struct RelativeVelocity {
-  double x, y, z;
-};
-
-[[gnu::always_inline]] inline RelativeVelocity relative_velocity(const FluidParticle& i, const FluidFields& f,
-                                                                 const MirrorImage& image) {
-  const std::size_t j = image.index;
-  return {i.vx - image.vector(0, f.vx[j]), i.vy - image.vector(1, f.vy[j]), i.vz - image.vector(2, f.vz[j])};
-}
-
-// Pressure force, artificial viscosity, continuity and energy of one pair (rates.hpp; docs/physics.md section
-// 1).
-template <bool solid>
-[[gnu::always_inline]] inline void fluid_pair(const FluidParticle& i, const FluidFields& f,
-                                              const Viscosity& av, const PairGeometry& pair,
-                                              const KernelGradient& grad, const RelativeVelocity& dv,
-                                              FluidSums& sum) {
-  const std::size_t j = pair.j();
-  const double gx = grad.x, gy = grad.y, gz = grad.z;
-  const double v_dot_g = dv.x * gx + dv.y * gy + dv.z * gz;
-  const double v_dot_x = dv.x * pair.dx + dv.y * pair.dy + dv.z * pair.dz;
-  const double mj = f.mass[j];
-
-  // Monaghan & Gingold (1983) viscosity, only for approaching pairs.
-  double pi_ij = 0.0;
-  if (v_dot_x < 0.0) {
-    const double hbar = grad.hbar;
-    const double mu = hbar * v_dot_x / (pair.r2 + av.eps * hbar * hbar);
-    const double cbar = 0.5 * (i.c + f.c[j]);
-    const double rhobar = 0.5 * (i.rho + f.rho[j]);
-    const double alpha_ij = av.use_switch ? 0.5 * (i.alpha + f.alpha[j]) : av.alpha;
-    const double beta_ij = av.use_switch ? av.beta_over_alpha * alpha_ij : av.beta;
-    pi_ij = (-alpha_ij * cbar * mu + beta_ij * mu * mu) / rhobar;
-    if (av.use_balsara) pi_ij *= 0.5 * (i.balsara + f.balsara[j]);
-    sum.max_mu = std::max(sum.max_mu, -mu);
-  }
-
-  const double inv_rho2j = f.inv_rho[j] * f.inv_rho[j];
-  double force = pi_ij;  // the pressure of solids is in their stress force (solid_pair)
-  if constexpr (!solid) force += i.pr2 + f.pressure[j] * inv_rho2j;  // symmetric in i, j
-  sum.ax -= mj * force * gx;
-  sum.ay -= mj * force * gy;
-  sum.az -= mj * force * gz;
-  sum.vv_grad += f.volume[j] * v_dot_g;
-  if constexpr (!solid) sum.mv_grad += mj * v_dot_g;
-  sum.viscous += mj * pi_ij * v_dot_g;
-  if constexpr (!solid) {
-    if (av.use_balsara) {  // (v_j - v_i) x grad W = grad W x dv (solids take it from G)
-      sum.curl_x += f.volume[j] * (gy * dv.z - gz * dv.y);
-      sum.curl_y += f.volume[j] * (gz * dv.x - gx * dv.z);
-      sum.curl_z += f.volume[j] * (gx * dv.y - gy * dv.x);
-    }
-  }
-}
-
 // Solids: B = sigma L / rho^2 (sigma = S - P I, L the stored correction matrix of gradient_correction.hpp;
 // xx, xy, xz, yx, yy, yz, zx, zy, zz) and, with the artificial stress, R (artificial_stress.hpp; xx, xy,
 // xz, yy, yz, zz) of every particle, computed before the pair loop (stress_force_pass).
@@ -177,64 +125,269 @@ struct SolidSums {
   double work = 0.0;  // -sum_j m_j v_ij . (B_i grad W): pressure and deviatoric work, matched to the force
 };
 
-// Corrected stress force + m_j (B_i + B_j) grad_i W_ij (with the artificial stress + m_j f_ij^4 (R_i + R_j)
-// grad_i W_ij), its work, and the sums G and M of one pair (rates.hpp). The image's B and R have their
-// off-diagonals reflected like S.
-template <class Kernel, bool artificial_stress>
-[[gnu::always_inline]] inline void solid_pair(const SolidParticle& i, const SolidFields& s,
-                                              const FluidFields& f, const PairGeometry& pair,
-                                              const KernelGradient& grad, const RelativeVelocity& dv,
-                                              FluidSums& sum, SolidSums& solid) {
-  const MirrorImage& image = pair.image;
-  const std::size_t j = pair.j();
-  const double gx = grad.x, gy = grad.y, gz = grad.z;
-  const double dvx = dv.x, dvy = dv.y, dvz = dv.z;
-  const double mj = f.mass[j];
-  double tix = i.bxx * gx + i.bxy * gy + i.bxz * gz;
-  double tiy = i.byx * gx + i.byy * gy + i.byz * gz;
-  double tiz = i.bzx * gx + i.bzy * gy + i.bzz * gz;
-  double tjx = s.bxx[j] * gx + image.shear(0, 1, s.bxy[j]) * gy + image.shear(0, 2, s.bxz[j]) * gz;
-  double tjy = image.shear(0, 1, s.byx[j]) * gx + s.byy[j] * gy + image.shear(1, 2, s.byz[j]) * gz;
-  double tjz = image.shear(0, 2, s.bzx[j]) * gx + image.shear(1, 2, s.bzy[j]) * gy + s.bzz[j] * gz;
-  if constexpr (artificial_stress) {
-    // Added to the stress force of each side, and so to its work.
-    const double ratio = Kernel::value(grad.r / grad.hbar, 1.0) * s.inverse_kernel_at_spacing;
-    const double f2 = ratio * ratio;
-    const double f4 = f2 * f2;
-    static_assert(artificial_stress_exponent == 4);
-    const double rxy_j = image.shear(0, 1, s.rxy[j]), rxz_j = image.shear(0, 2, s.rxz[j]),
-                 ryz_j = image.shear(1, 2, s.ryz[j]);
-    tix += f4 * (i.rxx * gx + i.rxy * gy + i.rxz * gz);
-    tiy += f4 * (i.rxy * gx + i.ryy * gy + i.ryz * gz);
-    tiz += f4 * (i.rxz * gx + i.ryz * gy + i.rzz * gz);
-    tjx += f4 * (s.rxx[j] * gx + rxy_j * gy + rxz_j * gz);
-    tjy += f4 * (rxy_j * gx + s.ryy[j] * gy + ryz_j * gz);
-    tjz += f4 * (rxz_j * gx + ryz_j * gy + s.rzz[j] * gz);
+// The kept pairs of one particle i: its entries within the support with their separations (pair_sums),
+// one per thread, grown to the longest list.
+struct PairScratch {
+  std::vector<std::uint32_t> entry;
+  std::vector<double> dx, dy, dz, r2, hsum;
+  void hold(std::size_t n) {
+    if (entry.size() >= n) return;
+    n += n / 4 + detail::lane_count;
+    entry.resize(n);
+    for (auto* v : {&dx, &dy, &dz, &r2, &hsum}) v->resize(n);
   }
-  sum.ax += mj * (tix + tjx);
-  sum.ay += mj * (tiy + tjy);
-  sum.az += mj * (tiz + tjz);
-  solid.work -= mj * (dvx * tix + dvy * tiy + dvz * tiz);
-  // (v_j - v_i) = -dv, grad W = g.
-  const double vgx = f.volume[j] * gx, vgy = f.volume[j] * gy, vgz = f.volume[j] * gz;
-  double* G = solid.G;
-  G[0] -= dvx * vgx;
-  G[1] -= dvx * vgy;
-  G[2] -= dvx * vgz;
-  G[3] -= dvy * vgx;
-  G[4] -= dvy * vgy;
-  G[5] -= dvy * vgz;
-  G[6] -= dvz * vgx;
-  G[7] -= dvz * vgy;
-  G[8] -= dvz * vgz;
-  std::array<double, 6>& M = solid.M;
-  M[0] -= pair.dx * vgx;
-  M[1] -= pair.dx * vgy;
-  M[2] -= pair.dx * vgz;
-  M[3] -= pair.dy * vgy;
-  M[4] -= pair.dy * vgz;
-  M[5] -= pair.dz * vgz;
+};
+
+// What the j-loop reads.
+struct PairInputs {
+  PairFrame frame;
+  FluidFields fluid;
+  SolidFields stress;
+  Viscosity av;
+  const std::uint64_t* offsets;
+  const std::uint64_t* ends;
+  const std::uint32_t* neighbours;
+};
+
+// The sums of particle i over its neighbours (rates.hpp), and the number of pairs within the support.
+// Each expression is written for four pairs; per lane it is the one-pair expression (the order of every
+// product and sum as the equations of rates.hpp are written), and a lane that holds no pair (the last
+// group's padding) is left out of every sum by a select, not by a factor (its values may be NaN).
+template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
+[[gnu::always_inline]] inline std::uint64_t pair_sums(const PairInputs& in, std::size_t i,
+                                                      const PairCentre& centre, const FluidParticle& fi,
+                                                      const SolidParticle& si, PairScratch& scratch,
+                                                      FluidSums& sum, SolidSums& solid_sum) {
+  using detail::LaneMask;
+  using detail::Lanes;
+  constexpr int lanes = detail::lane_count;
+  // The pairs within the support, in list order. NaN separations stay (they reach the sums, as a
+  // failure that shows); r = 0 has no direction and is left out.
+  const std::uint64_t first = in.offsets[i], last = in.ends[i];
+  scratch.hold(last - first);
+  std::size_t kept = 0;
+  for (std::uint64_t k = first; k < last; ++k) {
+    const PairGeometry pair = detail::pair_geometry<mirrored>(in.frame, centre, in.neighbours[k]);
+    scratch.entry[kept] = in.neighbours[k];
+    scratch.dx[kept] = pair.dx;
+    scratch.dy[kept] = pair.dy;
+    scratch.dz[kept] = pair.dz;
+    scratch.r2[kept] = pair.r2;
+    scratch.hsum[kept] = pair.hsum;
+    kept += (pair.beyond_support() || pair.coincident()) ? 0 : 1;
+  }
+
+  const FluidFields& f = in.fluid;
+  const SolidFields& s = in.stress;
+  const Viscosity& av = in.av;
+  const Lanes zero = {0.0, 0.0, 0.0, 0.0};
+  Lanes ax = zero, ay = zero, az = zero, vv_grad = zero, mv_grad = zero, viscous = zero, max_mu = zero;
+  Lanes curl_x = zero, curl_y = zero, curl_z = zero, work = zero;
+  Lanes G[9] = {zero, zero, zero, zero, zero, zero, zero, zero, zero};
+  Lanes M[6] = {zero, zero, zero, zero, zero, zero};
+  for (std::size_t k = 0; k < kept; k += lanes) {
+    Lanes dx, dy, dz, r2, hsum, vxj, vyj, vzj, mj, cj, rhoj, alphaj = zero, balsaraj = zero, pressurej = zero,
+                                                             inv_rhoj, volumej;
+    LaneMask valid, flip_x = {0, 0, 0, 0}, flip_y = flip_x, flip_z = flip_x;
+    for (int l = 0; l < lanes; ++l) {
+      const bool holds = k + l < kept;
+      const std::size_t at = holds ? k + l : k;
+      const MirrorImage image = mirror_image<mirrored>(scratch.entry[at]);
+      const std::size_t j = image.index;
+      valid[l] = holds ? -1 : 0;
+      dx[l] = scratch.dx[at];
+      dy[l] = scratch.dy[at];
+      dz[l] = scratch.dz[at];
+      r2[l] = scratch.r2[at];
+      hsum[l] = scratch.hsum[at];
+      vxj[l] = f.vx[j];
+      vyj[l] = f.vy[j];
+      vzj[l] = f.vz[j];
+      mj[l] = f.mass[j];
+      cj[l] = f.c[j];
+      rhoj[l] = f.rho[j];
+      if (av.use_switch) alphaj[l] = f.alpha[j];
+      if (av.use_balsara) balsaraj[l] = f.balsara[j];
+      if constexpr (!solid) pressurej[l] = f.pressure[j];
+      inv_rhoj[l] = f.inv_rho[j];
+      volumej[l] = f.volume[j];
+      if constexpr (mirrored) {
+        flip_x[l] = image.reflected(0) ? -1 : 0;
+        flip_y[l] = image.reflected(1) ? -1 : 0;
+        flip_z[l] = image.reflected(2) ? -1 : 0;
+      }
+    }
+    // The image's velocity: -v_a across the plane of axis a (mirror_image.hpp).
+    if constexpr (mirrored) {
+      vxj = flip_x ? -vxj : vxj;
+      vyj = flip_y ? -vyj : vyj;
+      vzj = flip_z ? -vzj : vzj;
+    }
+
+    // Kernel gradient at the mean h (pair_geometry.hpp, kernel_gradient).
+    Lanes r, dwdr;
+    detail::lane_sqrt(r2, r);
+    const Lanes hbar = 0.5 * hsum;
+    detail::kernel_derivative<Kernel>(r, hbar, dwdr);
+    const Lanes dwdr_over_r = dwdr / r;
+    const Lanes gx = dx * dwdr_over_r, gy = dy * dwdr_over_r, gz = dz * dwdr_over_r;
+    const Lanes dvx = fi.vx - vxj, dvy = fi.vy - vyj, dvz = fi.vz - vzj;
+
+    // Pressure force, Monaghan & Gingold (1983) viscosity of approaching pairs, continuity and energy.
+    const Lanes v_dot_g = dvx * gx + dvy * gy + dvz * gz;
+    const Lanes v_dot_x = dvx * dx + dvy * dy + dvz * dz;
+    const LaneMask approaching = (v_dot_x < 0.0) & valid;
+    const Lanes mu = hbar * v_dot_x / (r2 + av.eps * hbar * hbar);
+    const Lanes cbar = 0.5 * (fi.c + cj);
+    const Lanes rhobar = 0.5 * (fi.rho + rhoj);
+    const Lanes alpha_ij = av.use_switch ? 0.5 * (fi.alpha + alphaj) : zero + av.alpha;
+    const Lanes beta_ij = av.use_switch ? av.beta_over_alpha * alpha_ij : zero + av.beta;
+    Lanes pi_ij = (-alpha_ij * cbar * mu + beta_ij * mu * mu) / rhobar;
+    if (av.use_balsara) pi_ij *= 0.5 * (fi.balsara + balsaraj);
+    pi_ij = approaching ? pi_ij : zero;
+    const Lanes minus_mu = approaching ? -mu : zero;
+    max_mu = max_mu < minus_mu ? minus_mu : max_mu;
+    Lanes force = pi_ij;  // the pressure of solids is in their stress force
+    if constexpr (!solid) force += fi.pr2 + pressurej * (inv_rhoj * inv_rhoj);  // symmetric in i, j
+    ax -= valid ? mj * force * gx : zero;
+    ay -= valid ? mj * force * gy : zero;
+    az -= valid ? mj * force * gz : zero;
+    vv_grad += valid ? volumej * v_dot_g : zero;
+    if constexpr (!solid) mv_grad += valid ? mj * v_dot_g : zero;
+    viscous += valid ? mj * pi_ij * v_dot_g : zero;
+    if constexpr (!solid) {
+      if (av.use_balsara) {  // (v_j - v_i) x grad W = grad W x dv (solids take it from G)
+        curl_x += valid ? volumej * (gy * dvz - gz * dvy) : zero;
+        curl_y += valid ? volumej * (gz * dvx - gx * dvz) : zero;
+        curl_z += valid ? volumej * (gx * dvy - gy * dvx) : zero;
+      }
+    }
+
+    if constexpr (solid) {
+      // Corrected stress force m_j (B_i + B_j) grad_i W_ij (with the artificial stress + m_j f_ij^4 (R_i +
+      // R_j) grad_i W_ij), its work, and the sums G and M. The image's B and R have their off-diagonals
+      // reflected like S: the sign changes when exactly one of the two axes is reflected.
+      Lanes bxx, bxy, bxz, byx, byy, byz, bzx, bzy, bzz;
+      Lanes rxx = zero, rxy = zero, rxz = zero, ryy = zero, ryz = zero, rzz = zero;
+      for (int l = 0; l < lanes; ++l) {
+        const std::size_t j = neighbour_index(scratch.entry[k + l < kept ? k + l : k]);
+        bxx[l] = s.bxx[j], bxy[l] = s.bxy[j], bxz[l] = s.bxz[j];
+        byx[l] = s.byx[j], byy[l] = s.byy[j], byz[l] = s.byz[j];
+        bzx[l] = s.bzx[j], bzy[l] = s.bzy[j], bzz[l] = s.bzz[j];
+        if constexpr (artificial_stress) {
+          rxx[l] = s.rxx[j], rxy[l] = s.rxy[j], rxz[l] = s.rxz[j];
+          ryy[l] = s.ryy[j], ryz[l] = s.ryz[j], rzz[l] = s.rzz[j];
+        }
+      }
+      if constexpr (mirrored) {
+        const LaneMask flip_xy = flip_x ^ flip_y, flip_xz = flip_x ^ flip_z, flip_yz = flip_y ^ flip_z;
+        bxy = flip_xy ? -bxy : bxy;
+        byx = flip_xy ? -byx : byx;
+        bxz = flip_xz ? -bxz : bxz;
+        bzx = flip_xz ? -bzx : bzx;
+        byz = flip_yz ? -byz : byz;
+        bzy = flip_yz ? -bzy : bzy;
+        if constexpr (artificial_stress) {
+          rxy = flip_xy ? -rxy : rxy;
+          rxz = flip_xz ? -rxz : rxz;
+          ryz = flip_yz ? -ryz : ryz;
+        }
+      }
+      Lanes tix = si.bxx * gx + si.bxy * gy + si.bxz * gz;
+      Lanes tiy = si.byx * gx + si.byy * gy + si.byz * gz;
+      Lanes tiz = si.bzx * gx + si.bzy * gy + si.bzz * gz;
+      Lanes tjx = bxx * gx + bxy * gy + bxz * gz;
+      Lanes tjy = byx * gx + byy * gy + byz * gz;
+      Lanes tjz = bzx * gx + bzy * gy + bzz * gz;
+      if constexpr (artificial_stress) {
+        // Added to the stress force of each side, and so to its work.
+        Lanes ratio;
+        detail::kernel_value_at_unit_h<Kernel>(r / hbar, ratio);
+        ratio *= s.inverse_kernel_at_spacing;
+        const Lanes f2 = ratio * ratio;
+        const Lanes f4 = f2 * f2;
+        static_assert(artificial_stress_exponent == 4);
+        tix += f4 * (si.rxx * gx + si.rxy * gy + si.rxz * gz);
+        tiy += f4 * (si.rxy * gx + si.ryy * gy + si.ryz * gz);
+        tiz += f4 * (si.rxz * gx + si.ryz * gy + si.rzz * gz);
+        tjx += f4 * (rxx * gx + rxy * gy + rxz * gz);
+        tjy += f4 * (rxy * gx + ryy * gy + ryz * gz);
+        tjz += f4 * (rxz * gx + ryz * gy + rzz * gz);
+      }
+      ax += valid ? mj * (tix + tjx) : zero;
+      ay += valid ? mj * (tiy + tjy) : zero;
+      az += valid ? mj * (tiz + tjz) : zero;
+      work -= valid ? mj * (dvx * tix + dvy * tiy + dvz * tiz) : zero;
+      // (v_j - v_i) = -dv, grad W = g.
+      const Lanes vgx = volumej * gx, vgy = volumej * gy, vgz = volumej * gz;
+      G[0] -= valid ? dvx * vgx : zero;
+      G[1] -= valid ? dvx * vgy : zero;
+      G[2] -= valid ? dvx * vgz : zero;
+      G[3] -= valid ? dvy * vgx : zero;
+      G[4] -= valid ? dvy * vgy : zero;
+      G[5] -= valid ? dvy * vgz : zero;
+      G[6] -= valid ? dvz * vgx : zero;
+      G[7] -= valid ? dvz * vgy : zero;
+      G[8] -= valid ? dvz * vgz : zero;
+      M[0] -= valid ? dx * vgx : zero;
+      M[1] -= valid ? dx * vgy : zero;
+      M[2] -= valid ? dx * vgz : zero;
+      M[3] -= valid ? dy * vgy : zero;
+      M[4] -= valid ? dy * vgz : zero;
+      M[5] -= valid ? dz * vgz : zero;
+    }
+  }
+
+  sum.ax = detail::lane_sum(ax);
+  sum.ay = detail::lane_sum(ay);
+  sum.az = detail::lane_sum(az);
+  sum.vv_grad = detail::lane_sum(vv_grad);
+  sum.mv_grad = detail::lane_sum(mv_grad);
+  sum.viscous = detail::lane_sum(viscous);
+  sum.max_mu = detail::lane_max(max_mu, 0.0);
+  sum.curl_x = detail::lane_sum(curl_x);
+  sum.curl_y = detail::lane_sum(curl_y);
+  sum.curl_z = detail::lane_sum(curl_z);
+  if constexpr (solid) {
+    for (int a = 0; a < 9; ++a) solid_sum.G[a] = detail::lane_sum(G[a]);
+    for (int a = 0; a < 6; ++a) solid_sum.M[std::size_t(a)] = detail::lane_sum(M[a]);
+    solid_sum.work = detail::lane_sum(work);
+  }
+  return kept;
 }
+
+// pair_sums compiled for the baseline processor and for AVX2 (pair_lanes.hpp); never inlined into each
+// other or the driver, so that each keeps its own instructions.
+template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
+[[gnu::noinline]] std::uint64_t pair_sums_baseline(const PairInputs& in, std::size_t i,
+                                                   const PairCentre& centre, const FluidParticle& fi,
+                                                   const SolidParticle& si, PairScratch& scratch,
+                                                   FluidSums& sum, SolidSums& solid_sum) {
+  return pair_sums<Kernel, solid, mirrored, artificial_stress>(in, i, centre, fi, si, scratch, sum,
+                                                               solid_sum);
+}
+
+#if defined(__x86_64__)
+#define CRATERKIT_WIDE_LANES gnu::target("avx2")
+bool processor_has_avx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+#else
+#define CRATERKIT_WIDE_LANES gnu::noinline
+bool processor_has_avx2() {
+  return false;
+}
+#endif
+
+template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
+[[gnu::noinline, CRATERKIT_WIDE_LANES]] std::uint64_t pair_sums_wide(
+    const PairInputs& in, std::size_t i, const PairCentre& centre, const FluidParticle& fi,
+    const SolidParticle& si, PairScratch& scratch, FluidSums& sum, SolidSums& solid_sum) {
+  return pair_sums<Kernel, solid, mirrored, artificial_stress>(in, i, centre, fi, si, scratch, sum,
+                                                               solid_sum);
+}
+#undef CRATERKIT_WIDE_LANES
 
 // Solids, before the pair loop: B = sigma L / rho^2 of every particle, the half of the corrected stress
 // force and of the work term that belongs to one particle of a pair. Once per particle instead of once
@@ -373,9 +526,6 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
                   p.correction_yy.data(), p.correction_yz.data(), p.correction_zz.data()};
   }
   const std::uint8_t* flags = p.flags.data();
-  const std::uint64_t* offsets = pairs.offsets.data();
-  const std::uint64_t* ends = pairs.ends_of();
-  const std::uint32_t* neighbours = pairs.neighbours.data();
 
   double* ax_out = p.acceleration_x.data();
   double* ay_out = p.acceleration_y.data();
@@ -397,85 +547,82 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
   double min_signal_time = inf;
   std::uint64_t interacting = 0;
 
-  // firstprivate: each thread reads the frame, the fields and the viscosity parameters from its own copy
-  // rather than through the pointer to the shared ones (the j-loops then take 1-2 % fewer instructions).
-#pragma omp parallel for schedule(dynamic, 128) reduction(min : min_signal_time) reduction(+ : interacting) \
-    firstprivate(frame, fluid, av)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = selection.at(static_cast<std::size_t>(ii));
-    if ((flags[i] & (particle_fixed | particle_ejected)) != 0) {
-      ax_out[i] = ay_out[i] = az_out[i] = 0.0;
-      drho_out[i] = du_out[i] = dalpha_out[i] = 0.0;
-      neighbour_count[i] = 0;
-      signal_time[i] = inf;
-      if constexpr (solid) {
-        if (stress_inputs != nullptr)  // compute_stress_rates' zeros
-          store_stress_rate(p, i, Tensor3{}, 0.0, stress_inputs->materials[p.material[i]]);
+  const PairInputs inputs{
+      frame, fluid, stress, av, pairs.offsets.data(), pairs.ends_of(), pairs.neighbours.data()};
+  const bool wide = options.wide_lanes && processor_has_avx2();
+#pragma omp parallel reduction(min : min_signal_time) reduction(+ : interacting)
+  {
+    PairScratch scratch;
+#pragma omp for schedule(dynamic, 128)
+    for (std::int64_t ii = 0; ii < n; ++ii) {
+      const auto i = selection.at(static_cast<std::size_t>(ii));
+      if ((flags[i] & (particle_fixed | particle_ejected)) != 0) {
+        ax_out[i] = ay_out[i] = az_out[i] = 0.0;
+        drho_out[i] = du_out[i] = dalpha_out[i] = 0.0;
+        neighbour_count[i] = 0;
+        signal_time[i] = inf;
+        if constexpr (solid) {
+          if (stress_inputs != nullptr)  // compute_stress_rates' zeros
+            store_stress_rate(p, i, Tensor3{}, 0.0, stress_inputs->materials[p.material[i]]);
+        }
+        continue;
       }
-      continue;
-    }
-    const PairCentre centre = detail::pair_centre(frame, i);
-    const FluidParticle fluid_i = fluid_particle(fluid, av, i);
-    SolidParticle solid_i{};  // (dead code, removed by the compiler, for fluids)
-    if constexpr (solid) solid_i = solid_particle<artificial_stress>(stress, i);
-    const double hi = centre.h, ci = fluid_i.c, alphai = fluid_i.alpha;
+      const PairCentre centre = detail::pair_centre(frame, i);
+      const FluidParticle fluid_i = fluid_particle(fluid, av, i);
+      SolidParticle solid_i{};  // (dead code, removed by the compiler, for fluids)
+      if constexpr (solid) solid_i = solid_particle<artificial_stress>(stress, i);
+      const double hi = centre.h, ci = fluid_i.c, alphai = fluid_i.alpha;
 
-    FluidSums sum;
-    SolidSums solid_sum;
-    std::uint64_t count = 0;
-    for (std::uint64_t k = offsets[i]; k < ends[i]; ++k) {
-      const PairGeometry pair = detail::pair_geometry<mirrored>(frame, centre, neighbours[k]);
-      if (pair.beyond_support() || pair.coincident()) continue;
-      ++count;
-      const KernelGradient grad = detail::kernel_gradient<Kernel>(pair);
-      const RelativeVelocity dv = relative_velocity(fluid_i, fluid, pair.image);
-      fluid_pair<solid>(fluid_i, fluid, av, pair, grad, dv, sum);
+      FluidSums sum;
+      SolidSums solid_sum;
+      std::uint64_t count = 0;
+      count = wide ? pair_sums_wide<Kernel, solid, mirrored, artificial_stress>(
+                         inputs, i, centre, fluid_i, solid_i, scratch, sum, solid_sum)
+                   : pair_sums_baseline<Kernel, solid, mirrored, artificial_stress>(
+                         inputs, i, centre, fluid_i, solid_i, scratch, sum, solid_sum);
+
+      ax_out[i] = sum.ax + gx_body;
+      ay_out[i] = sum.ay + gy_body;
+      az_out[i] = sum.az + gz_body;
+      drho_out[i] = fluid_i.rho * sum.vv_grad;
       if constexpr (solid) {
-        solid_pair<Kernel, artificial_stress>(solid_i, stress, fluid, pair, grad, dv, sum, solid_sum);
+        du_out[i] = solid_sum.work + 0.5 * sum.viscous;
+        store_correction(p, i, solid_sum, correction, gradients, stress_inputs);
+      } else {
+        du_out[i] = fluid_i.pr2 * sum.mv_grad + 0.5 * sum.viscous;
       }
-    }
 
-    ax_out[i] = sum.ax + gx_body;
-    ay_out[i] = sum.ay + gy_body;
-    az_out[i] = sum.az + gz_body;
-    drho_out[i] = fluid_i.rho * sum.vv_grad;
-    if constexpr (solid) {
-      du_out[i] = solid_sum.work + 0.5 * sum.viscous;
-      store_correction(p, i, solid_sum, correction, gradients, stress_inputs);
-    } else {
-      du_out[i] = fluid_i.pr2 * sum.mv_grad + 0.5 * sum.viscous;
-    }
-
-    if (av.use_balsara) {
-      // Balsara (1995) factor |div v| / (|div v| + |curl v| + 1e-4 c/h) for the next evaluation, from the
-      // uncorrected (kernel-sum) gradient: G[3a + b] = dv_a/dx_b for solids.
-      double curl_x = sum.curl_x, curl_y = sum.curl_y, curl_z = sum.curl_z;
-      if constexpr (solid) {
-        const double* G = solid_sum.G;
-        curl_x = G[7] - G[5];
-        curl_y = G[2] - G[6];
-        curl_z = G[3] - G[1];
+      if (av.use_balsara) {
+        // Balsara (1995) factor |div v| / (|div v| + |curl v| + 1e-4 c/h) for the next evaluation, from the
+        // uncorrected (kernel-sum) gradient: G[3a + b] = dv_a/dx_b for solids.
+        double curl_x = sum.curl_x, curl_y = sum.curl_y, curl_z = sum.curl_z;
+        if constexpr (solid) {
+          const double* G = solid_sum.G;
+          curl_x = G[7] - G[5];
+          curl_y = G[2] - G[6];
+          curl_z = G[3] - G[1];
+        }
+        const double div_v = std::abs(sum.vv_grad);
+        const double curl_v = std::sqrt(curl_x * curl_x + curl_y * curl_y + curl_z * curl_z);
+        const double denominator = div_v + curl_v + 1e-4 * ci / hi;
+        balsara_next[i] = denominator > 0.0 ? div_v / denominator : 1.0;
       }
-      const double div_v = std::abs(sum.vv_grad);
-      const double curl_v = std::sqrt(curl_x * curl_x + curl_y * curl_y + curl_z * curl_z);
-      const double denominator = div_v + curl_v + 1e-4 * ci / hi;
-      balsara_next[i] = denominator > 0.0 ? div_v / denominator : 1.0;
-    }
-    if (av.use_switch) {
-      // Morris & Monaghan (1997): decay towards alpha_min on tau = h / (l c), growth in compression.
-      const double div_v = -sum.vv_grad;
-      const double source = std::max(-div_v, 0.0) * (av.alpha - alphai);
-      dalpha_out[i] = -(alphai - options_av.alpha_min) * options_av.decay_factor * ci / hi + source;
-    } else {
-      dalpha_out[i] = 0.0;
-    }
+      if (av.use_switch) {
+        // Morris & Monaghan (1997): decay towards alpha_min on tau = h / (l c), growth in compression.
+        const double div_v = -sum.vv_grad;
+        const double source = std::max(-div_v, 0.0) * (av.alpha - alphai);
+        dalpha_out[i] = -(alphai - options_av.alpha_min) * options_av.decay_factor * ci / hi + source;
+      } else {
+        dalpha_out[i] = 0.0;
+      }
 
-    const double beta_i = av.use_switch ? av.beta_over_alpha * alphai : av.beta;
-    const double signal = ci + 1.2 * (alphai * ci + beta_i * sum.max_mu);
-    signal_time[i] = signal > 0.0 ? hi / signal : inf;
-    min_signal_time = std::min(min_signal_time, signal_time[i]);
-    interacting += count;
-    neighbour_count[i] = static_cast<std::uint32_t>(count);
+      const double beta_i = av.use_switch ? av.beta_over_alpha * alphai : av.beta;
+      const double signal = ci + 1.2 * (alphai * ci + beta_i * sum.max_mu);
+      signal_time[i] = signal > 0.0 ? hi / signal : inf;
+      min_signal_time = std::min(min_signal_time, signal_time[i]);
+      interacting += count;
+      neighbour_count[i] = static_cast<std::uint32_t>(count);
+    }
   }
   if (av.use_balsara) {
     double* factor = p.balsara.data();

@@ -109,6 +109,9 @@ struct RateOptions {
   // Solids only: the repulsive stress of Monaghan (2000) between close neighbours in tension
   // (artificial_stress.hpp); off unless epsilon > 0.
   ArtificialStress artificial_stress{};
+  // The pair loop in 256-bit registers where the processor has AVX2; false: in the baseline processor's
+  // 128-bit ones (slower). Both do the same operations and give the same results, bit for bit.
+  bool wide_lanes = true;
 };
 
 // Neighbour lists (NeighbourLists): the neighbours of i are neighbours[offsets[i] .. end), where end is
