@@ -27,7 +27,6 @@ namespace {
 
 using detail::PairCentre;
 using detail::PairFrame;
-using detail::PairGeometry;
 
 // The pass is an OpenMP loop over the particles i (rates_impl: i's state in, its rates out) around a
 // j-loop over i's neighbour list (pair_sums). The j-loop first keeps the entries within the support (the
@@ -161,20 +160,53 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
   using detail::LaneMask;
   using detail::Lanes;
   constexpr int lanes = detail::lane_count;
-  // The pairs within the support, in list order. NaN separations stay (they reach the sums, as a
-  // failure that shows); r = 0 has no direction and is left out.
+  // The pairs within the support, in list order, their separations taken four at a time (the prologue of
+  // pair_geometry.hpp per lane: the image's position, the minimum image, r^2, h_i + h_j). NaN separations
+  // stay (they reach the sums, as a failure that shows); r = 0 has no direction and is left out.
   const std::uint64_t first = in.offsets[i], last = in.ends[i];
-  scratch.hold(last - first);
+  scratch.hold(last - first + lanes);  // the last group writes one past the kept entries
+  const PairFrame& frame = in.frame;
   std::size_t kept = 0;
-  for (std::uint64_t k = first; k < last; ++k) {
-    const PairGeometry pair = detail::pair_geometry<mirrored>(in.frame, centre, in.neighbours[k]);
-    scratch.entry[kept] = in.neighbours[k];
-    scratch.dx[kept] = pair.dx;
-    scratch.dy[kept] = pair.dy;
-    scratch.dz[kept] = pair.dz;
-    scratch.r2[kept] = pair.r2;
-    scratch.hsum[kept] = pair.hsum;
-    kept += (pair.beyond_support() || pair.coincident()) ? 0 : 1;
+  for (std::uint64_t k = first; k < last; k += lanes) {
+    Lanes xj, yj, zj, hj;
+    LaneMask valid, flip_x = {0, 0, 0, 0}, flip_y = flip_x, flip_z = flip_x;
+    for (int l = 0; l < lanes; ++l) {
+      const bool holds = k + l < last;
+      const MirrorImage image = mirror_image<mirrored>(in.neighbours[holds ? k + l : k]);
+      const std::size_t j = image.index;
+      valid[l] = holds ? -1 : 0;
+      xj[l] = frame.x[j];
+      yj[l] = frame.y[j];
+      zj[l] = frame.z[j];
+      hj[l] = frame.h[j];
+      if constexpr (mirrored) {
+        flip_x[l] = image.reflected(0) ? -1 : 0;
+        flip_y[l] = image.reflected(1) ? -1 : 0;
+        flip_z[l] = image.reflected(2) ? -1 : 0;
+      }
+    }
+    if constexpr (mirrored) {  // 2 L_a - x_a across the plane of axis a (mirror_image.hpp)
+      xj = flip_x ? 2.0 * frame.planes.position[0] - xj : xj;
+      yj = flip_y ? 2.0 * frame.planes.position[1] - yj : yj;
+      zj = flip_z ? 2.0 * frame.planes.position[2] - zj : zj;
+    }
+    Lanes dx = centre.x - xj, dy = centre.y - yj, dz = centre.z - zj;
+    // minimum_image.hpp; the half periods are infinite on open axes, where nothing wraps.
+    dx = dx > frame.hx ? dx - frame.Lx : (dx < -frame.hx ? dx + frame.Lx : dx);
+    dy = dy > frame.hy ? dy - frame.Ly : (dy < -frame.hy ? dy + frame.Ly : dy);
+    dz = dz > frame.hz ? dz - frame.Lz : (dz < -frame.hz ? dz + frame.Lz : dz);
+    const Lanes r2 = dx * dx + dy * dy + dz * dz;
+    const Lanes hsum = centre.h + hj;
+    const LaneMask within = ~(r2 >= hsum * hsum) & ~(r2 <= 0.0) & valid;
+    for (int l = 0; l < lanes; ++l) {
+      scratch.entry[kept] = in.neighbours[k + l < last ? k + l : k];
+      scratch.dx[kept] = dx[l];
+      scratch.dy[kept] = dy[l];
+      scratch.dz[kept] = dz[l];
+      scratch.r2[kept] = r2[l];
+      scratch.hsum[kept] = hsum[l];
+      kept += within[l] != 0 ? 1 : 0;
+    }
   }
 
   const FluidFields& f = in.fluid;
