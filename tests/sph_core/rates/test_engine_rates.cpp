@@ -442,7 +442,8 @@ TEST(Rates, StressRatesFromThePairPassEqualThoseFromTheStoredGradient) {
   for (std::size_t i = 0; i < shear_modulus.size(); ++i)
     shear_modulus[i] = i % 23 == 5 ? 0.0 : 2.0 + 0.001 * double(i);
   // Every other particle counts the plastic strain (store_stress_rate's other branch).
-  const Material total = load_material("boulder");
+  Material total = load_material("boulder");
+  std::get<LundborgStrength>(*total.strength).weakening_strain = WeakeningStrain::total;
   Material plastic = total;
   std::get<LundborgStrength>(*plastic.strength).weakening_strain = WeakeningStrain::plastic;
   const std::vector<Material> materials{total, plastic};
