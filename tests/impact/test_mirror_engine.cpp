@@ -195,9 +195,16 @@ class FullAndQuarter {
 // persists (it does not grow: 1e-7 to 1e-6 from then to step 800). The full run is no more symmetric than
 // that itself: its own mirror partners differ by as much. So the check after 0.02 s (724 steps: the
 // contact, compaction and the late-stage switch at 0.01 s) is that every field of the quarter is within
-// 1e-5 of its scale of the full run (measured: 9.1e-7 at worst, u) and no farther from it than twice the
-// full run's own mirror asymmetry (measured: at most 1.90 times, S_yz; 1.19 times with the same scheme
-// summed in another order, so the ratio itself moves with round-off between 1 and 2).
+// 1e-5 of its scale of the full run and no farther from it than the full run is from its own mirror image.
+// How far that is, is itself round-off, so the comparison is made over all fields together: the largest
+// difference of any field against the largest asymmetry of any field, and the geometric mean over the fields
+// of each field's ratio, both at most 3. Measured (2026-12-06) over 32 realisations that differ only in
+// round-off (the impact speed moved by 0-15 ulps, on the engine with std::cbrt in the h update and on one
+// with a series for it): largest difference 2.6e-7 - 1.7e-6 of a field's scale, the ratio of the largest
+// values 0.18-1.45, the geometric mean 0.47-1.70. A single field's ratio is not a yardstick: it ranged 0.9-11
+// (a field whose own asymmetry came out small in that realisation), and the bound of 2 per field that this
+// test first had failed in 11 of 16 of those realisations of the engine it was written for. A mirror error
+// shows as a difference of the field's own size, far above 1e-5.
 TEST(MirrorEngine, QuarterDomainEqualsTheFullDomainParticleByParticle) {
   FullAndQuarter runs;
   const double end_time = 0.02;
@@ -230,26 +237,32 @@ TEST(MirrorEngine, QuarterDomainEqualsTheFullDomainParticleByParticle) {
   EXPECT_TRUE(runs.quarter().late_stage_active());
   const Box& box = runs.quarter().box();
   EXPECT_TRUE(box.mirror[0] && box.mirror[1] && !box.mirror[2]);
-  double worst = 0.0, worst_ratio = 0.0;
-  std::string worst_field, worst_ratio_field;
+  double worst = 0.0, largest_asymmetry = 0.0, log_ratios = 0.0;
+  int ratios = 0;
+  std::string worst_field;
   for (const auto& d : runs.differences()) {
     EXPECT_LE(d.quarter_vs_full, 1e-5) << d.name;
-    EXPECT_LE(d.quarter_vs_full, 2.0 * d.full_asymmetry + 1e-13)
-        << d.name << " (full-run asymmetry " << d.full_asymmetry << ")";
-    if (d.quarter_vs_full > worst) worst = d.quarter_vs_full, worst_field = d.name;
-    if (d.full_asymmetry > 0 && d.quarter_vs_full / d.full_asymmetry > worst_ratio) {
-      worst_ratio = d.quarter_vs_full / d.full_asymmetry;
-      worst_ratio_field = d.name;
+    if (d.full_asymmetry == 0.0) {  // fields that never differ (mass, material, flags, ...)
+      EXPECT_LE(d.quarter_vs_full, 1e-13) << d.name;
+      continue;
     }
+    if (d.quarter_vs_full > worst) worst = d.quarter_vs_full, worst_field = d.name;
+    largest_asymmetry = std::max(largest_asymmetry, d.full_asymmetry);
+    log_ratios += std::log(std::max(d.quarter_vs_full, 1e-300) / d.full_asymmetry);
+    ++ratios;
   }
+  ASSERT_GT(ratios, 20);
+  const double typical_ratio = std::exp(log_ratios / ratios);
+  EXPECT_LE(worst, 3.0 * largest_asymmetry) << worst_field;
+  EXPECT_LE(typical_ratio, 3.0);
   const double moved = runs.largest_displacement();
   std::printf(
       "full vs quarter: to step %llu (before the first particle crushes) %.2e of the field's largest "
-      "magnitude at most; after %llu steps to t = %.3g s %.2e (%s), at most %.2f x the full run's own mirror "
-      "asymmetry (%s); largest displacement %.3g m\n",
+      "magnitude at most; after %llu steps to t = %.3g s %.2e (%s), %.2f x the full run's largest mirror "
+      "asymmetry (%.2e), each field's ratio %.2f in the geometric mean; largest displacement %.3g m\n",
       static_cast<unsigned long long>(early_steps), early,
       static_cast<unsigned long long>(runs.quarter().step_count()), runs.quarter().time(), worst,
-      worst_field.c_str(), worst_ratio, worst_ratio_field.c_str(), moved);
+      worst_field.c_str(), worst / largest_asymmetry, largest_asymmetry, typical_ratio, moved);
   EXPECT_GT(moved, 0.02);  // the run did something: the projectile penetrated and was stopped
 
   // The conserved sums of the quarter are a quarter of the full domain's (mass, energy).
