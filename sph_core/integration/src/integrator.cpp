@@ -1,5 +1,7 @@
 #include "craterkit/sph/integration/integrator.hpp"
 
+#include "craterkit/sph/integration/cube_root_near_one.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -68,7 +70,7 @@ void correct_selected(Particles& p, StepOf step_of, const ParticleSelection& sel
       p.distention[i] = std::clamp(w.distention[i] + half * (w.distention_rate[i] + p.distention_rate[i]),
                                    1.0, w.distention[i]);
     }
-    double factor = std::cbrt(density / p.density[i]);
+    double factor = cube_root_near_one(density / p.density[i]);
     const double count = neighbour_count[i];
     if (count < low || count > high) {
       factor *= std::clamp(0.5 * (1.0 + std::cbrt(target / std::max(count, 1.0))), 0.8, 1.25);
@@ -160,8 +162,9 @@ void drift(Particles& p, double dt, const Box& box, const SmoothingLengthParamet
       // dalpha/dt <= 0 (compaction is irreversible); alpha >= 1 (no matrix denser than its law).
       p.distention[i] = std::max(1.0, p.distention[i] + dt * p.distention_rate[i]);
     }
-    p.smoothing_length[i] = clamped_smoothing_length(
-        p.smoothing_length[i] * std::cbrt(density / p.density[i]), p.mass[i], p.density[i], smoothing);
+    p.smoothing_length[i] =
+        clamped_smoothing_length(p.smoothing_length[i] * cube_root_near_one(density / p.density[i]),
+                                 p.mass[i], p.density[i], smoothing);
   }
 }
 
