@@ -1,11 +1,11 @@
 #include "craterkit/sph/integration/integrator.hpp"
 
-#include "craterkit/sph/integration/cube_root_near_one.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+
+#include "craterkit/sph/integration/cube_root_near_one.hpp"
 
 namespace craterkit::sph {
 
