@@ -124,6 +124,15 @@ struct SolidSums {
   double work = 0.0;  // -sum_j m_j v_ij . (B_i grad W): pressure and deviatoric work, matched to the force
 };
 
+// Lane `lane` of the masks of reflection across the mirror planes of axes x, y, z: all ones where the
+// neighbour is an image reflected across that plane, zero where not.
+[[gnu::always_inline]] inline void set_reflections(int lane, const MirrorImage& image, detail::LaneMask& x,
+                                                   detail::LaneMask& y, detail::LaneMask& z) {
+  x[lane] = image.reflected(0) ? -1 : 0;
+  y[lane] = image.reflected(1) ? -1 : 0;
+  z[lane] = image.reflected(2) ? -1 : 0;
+}
+
 // The kept pairs of one particle i: its entries within the support with their separations (pair_sums),
 // one per thread, grown to the longest list.
 struct PairScratch {
@@ -179,11 +188,7 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
       yj[l] = frame.y[j];
       zj[l] = frame.z[j];
       hj[l] = frame.h[j];
-      if constexpr (mirrored) {
-        flip_x[l] = image.reflected(0) ? -1 : 0;
-        flip_y[l] = image.reflected(1) ? -1 : 0;
-        flip_z[l] = image.reflected(2) ? -1 : 0;
-      }
+      if constexpr (mirrored) set_reflections(l, image, flip_x, flip_y, flip_z);
     }
     if constexpr (mirrored) {  // 2 L_a - x_a across the plane of axis a (mirror_image.hpp)
       xj = flip_x ? 2.0 * frame.planes.position[0] - xj : xj;
@@ -243,11 +248,7 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
       if constexpr (!solid) pressurej[l] = f.pressure[j];
       inv_rhoj[l] = f.inv_rho[j];
       volumej[l] = f.volume[j];
-      if constexpr (mirrored) {
-        flip_x[l] = image.reflected(0) ? -1 : 0;
-        flip_y[l] = image.reflected(1) ? -1 : 0;
-        flip_z[l] = image.reflected(2) ? -1 : 0;
-      }
+      if constexpr (mirrored) set_reflections(l, image, flip_x, flip_y, flip_z);
     }
     // The image's velocity: -v_a across the plane of axis a (mirror_image.hpp).
     if constexpr (mirrored) {
