@@ -7,6 +7,9 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+#include <omp.h>
 
 #include "craterkit/sph/particles/mirror_image.hpp"
 
@@ -202,7 +205,14 @@ int BlockSchedule::choose_levels(std::span<const double> time_step, const Neighb
     const auto k = static_cast<std::size_t>(kk);
     const std::size_t i = active_[k];
     const int current = level_[i];
-    int want = std::max(block_level(block_, time_step[i]), neighbour_floor(i, lists, support, levels));
+    // No neighbour is finer than finest_ (every process's levels are within the agreed finest level), so a
+    // particle that wants finest_ - block_neighbour_levels or finer for itself needs no look at them: in the
+    // substeps of the finest level, the most frequent, that is most of the active particles (in the shock
+    // stage).
+    const int own = block_level(block_, time_step[i]);
+    int want = own >= finest_ - block_neighbour_levels
+                   ? own
+                   : std::max(own, neighbour_floor(i, lists, support, levels));
     if (want > block_finest_level_limit) bad = std::max(bad, int(i));
     want = std::min(want, block_finest_level_limit);
     int level = current;
@@ -234,20 +244,41 @@ void BlockSchedule::wake(std::span<const std::uint32_t> wakers, std::span<const 
                          const NeighbourLists& lists, const PairSupport* support, std::size_t offset) {
   // Waking (Saitoh & Makino 2009): a neighbour in the middle of a step more than two levels coarser than
   // a waker's new level has its step cut short at the next tick aligned to the level two coarser than
-  // that, and continues at that level. Of several wakers the finest decides. Serial: few particles are
-  // woken.
+  // that, and continues at that level. Of several wakers the finest decides. Each thread lists the
+  // (neighbour, floor) pairs of a contiguous run of the wakers; the runs are then read in order, as one
+  // loop over the wakers would read them.
+  const std::size_t count = wakers.size();
+  if (wake_found_.size() < std::size_t(omp_get_max_threads()))
+    wake_found_.resize(std::size_t(omp_get_max_threads()));
+  std::size_t threads = 1;
+#pragma omp parallel if (count > 256)
+  {
+#pragma omp single
+    threads = std::size_t(omp_get_num_threads());
+    const auto id = std::size_t(omp_get_thread_num());
+    std::vector<std::pair<std::uint32_t, std::uint8_t>>& found = wake_found_[id];
+    found.clear();
+    const std::size_t first = count * id / std::size_t(omp_get_num_threads());
+    const std::size_t last = count * (id + 1) / std::size_t(omp_get_num_threads());
+    for (std::size_t w = first; w < last; ++w) {
+      const std::uint32_t k = wakers[w];
+      const int floor = int(waker_level[k]) - block_neighbour_levels;
+      if (floor <= 0) continue;
+      for (const std::uint32_t entry : lists.of(k)) {
+        const std::size_t listed = neighbour_index(entry);
+        if (listed < offset || listed - offset >= level_.size()) continue;  // another process's particle
+        const std::size_t j = listed - offset;
+        if (scheduled_[j] == 0 || int(level_[j]) >= floor || end_tick_[j] <= tick_) continue;
+        if (support != nullptr && !(*support)(k, entry)) continue;
+        found.emplace_back(std::uint32_t(j), std::uint8_t(floor));
+      }
+    }
+  }
   woken_.clear();
-  for (const std::uint32_t k : wakers) {
-    const int floor = int(waker_level[k]) - block_neighbour_levels;
-    if (floor <= 0) continue;
-    for (const std::uint32_t entry : lists.of(k)) {
-      const std::size_t listed = neighbour_index(entry);
-      if (listed < offset || listed - offset >= level_.size()) continue;  // another process's particle
-      const std::size_t j = listed - offset;
-      if (scheduled_[j] == 0 || int(level_[j]) >= floor || end_tick_[j] <= tick_) continue;
-      if (support != nullptr && !(*support)(k, entry)) continue;
-      if (wake_floor_[j] == 0) woken_.push_back(static_cast<std::uint32_t>(j));
-      wake_floor_[j] = static_cast<std::uint8_t>(std::max(int(wake_floor_[j]), floor));
+  for (std::size_t t = 0; t < threads; ++t) {
+    for (const auto& [j, floor] : wake_found_[t]) {
+      if (wake_floor_[j] == 0) woken_.push_back(j);
+      wake_floor_[j] = std::max(wake_floor_[j], floor);
     }
   }
   for (const std::uint32_t j : woken_) {

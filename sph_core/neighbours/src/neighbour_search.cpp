@@ -81,10 +81,11 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       image_start_.capacity() * sizeof(std::uint32_t) + group_queried_.capacity() + near_planes_.capacity() +
       image_rank_.capacity() * sizeof(std::uint32_t) + slot_end_.capacity() * sizeof(std::uint64_t) +
       removed_.capacity() + moved_.capacity() + moved_list_.capacity() * sizeof(std::uint32_t) +
+      group_dirty_.capacity() + dirty_groups_.capacity() * sizeof(std::uint32_t) +
       moved_anchor_.capacity() * sizeof(moved_anchor_[0]) +
       fresh_offsets_.capacity() * sizeof(std::uint64_t) + fresh_.capacity() * sizeof(std::uint32_t);
   for (const auto& t : scratch_)
-    bytes += (t.found.capacity() + t.candidates.capacity()) * sizeof(std::uint32_t);
+    bytes += (t.found.capacity() + t.candidates.capacity() + t.movers.capacity()) * sizeof(std::uint32_t);
   return bytes;
 }
 
@@ -111,6 +112,8 @@ void NeighbourSearch::release_workspace() {
   release(near_planes_);
   release(image_start_);
   release(moved_list_);
+  release(group_dirty_);
+  release(dirty_groups_);
   release(moved_anchor_);
   release(fresh_offsets_);
   release(fresh_);
@@ -777,27 +780,43 @@ bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box) {
   const std::size_t n = particles_;
   const double skin = options_.skin;
   moved_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t k = rank_[i];
-    const double x = wrap_position(box, 0, input.x[i]);
-    const double y = wrap_position(box, 1, input.y[i]);
-    const double z = wrap_position(box, 2, input.z[i]);
-    const auto d = displacement(box, x, y, z, xs_[k], ys_[k], zs_[k]);
-    const double moved = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    const double grown = std::max(0.0, input.smoothing_length[i] - hs_[k]);
-    // Written as !(<=) so that a NaN position or h is searched again (and reported by a restructure).
-    moved_[i] = !(moved + grown <= skin * hs_[k]) ? 1 : 0;
+  if (scratch_.size() < std::size_t(omp_get_max_threads()))
+    scratch_.resize(std::size_t(omp_get_max_threads()));
+  // Each thread checks a contiguous range and lists its movers; the ranges joined in order give them in
+  // index order without a second pass over every particle (this runs every substep, for a few movers).
+  std::size_t threads = 1;
+#pragma omp parallel
+  {
+#pragma omp single
+    threads = std::size_t(omp_get_num_threads());
+    const auto id = std::size_t(omp_get_thread_num());
+    std::vector<std::uint32_t>& movers = scratch_[id].movers;
+    movers.clear();
+    const std::size_t first = n * id / std::size_t(omp_get_num_threads());
+    const std::size_t last = n * (id + 1) / std::size_t(omp_get_num_threads());
+    for (std::size_t i = first; i < last; ++i) {
+      const std::size_t k = rank_[i];
+      const double x = wrap_position(box, 0, input.x[i]);
+      const double y = wrap_position(box, 1, input.y[i]);
+      const double z = wrap_position(box, 2, input.z[i]);
+      const auto d = displacement(box, x, y, z, xs_[k], ys_[k], zs_[k]);
+      const double moved = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+      const double grown = std::max(0.0, input.smoothing_length[i] - hs_[k]);
+      // Written as !(<=) so that a NaN position or h is searched again (and reported by a restructure).
+      const bool beyond = !(moved + grown <= skin * hs_[k]);
+      moved_[i] = beyond ? 1 : 0;
+      if (beyond) movers.push_back(std::uint32_t(i));
+    }
   }
   moved_list_.clear();
+  for (std::size_t t = 0; t < threads; ++t)
+    moved_list_.insert(moved_list_.end(), scratch_[t].movers.begin(), scratch_[t].movers.end());
   moved_anchor_.clear();
   const double grow = 1.0 + skin;
   bool fits = true;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (moved_[i] == 0) continue;
+  for (const std::uint32_t i : moved_list_) {
     const std::array<double, 4> anchor{wrap_position(box, 0, input.x[i]), wrap_position(box, 1, input.y[i]),
                                        wrap_position(box, 2, input.z[i]), input.smoothing_length[i]};
-    moved_list_.push_back(std::uint32_t(i));
     moved_anchor_.push_back(anchor);
     if (!(anchor[3] <= build_h_max_) || !std::isfinite(anchor[0] + anchor[1] + anchor[2])) fits = false;
     if (box.any_mirror()) {
@@ -819,6 +838,17 @@ bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box) {
 // then the boxes of the tree around them.
 void NeighbourSearch::move_anchors(const Box& box) {
   const MirrorPlanes planes = mirror_planes(box);
+  dirty_groups_.clear();
+  group_dirty_.resize(groups_.size());
+  const auto mark_group = [this](std::size_t k) {
+    // The group holding sorted index k: groups are contiguous ranges in increasing order.
+    const auto after = std::upper_bound(groups_.begin(), groups_.end(), k,
+                                        [](std::size_t rank, const Group& g) { return rank < g.begin; });
+    const auto g = std::size_t(after - groups_.begin()) - 1;
+    if (group_dirty_[g] != 0) return;
+    group_dirty_[g] = 1;
+    dirty_groups_.push_back(std::uint32_t(g));
+  };
   for (std::size_t m = 0; m < moved_list_.size(); ++m) {
     const std::size_t i = moved_list_[m];
     const auto& anchor = moved_anchor_[m];
@@ -827,6 +857,7 @@ void NeighbourSearch::move_anchors(const Box& box) {
     ys_[k] = anchor[1];
     zs_[k] = anchor[2];
     hs_[k] = anchor[3];
+    mark_group(k);
     if (!box.any_mirror()) continue;
     for (std::uint32_t e = image_start_[i]; e < image_start_[i + 1]; ++e) {
       const std::size_t kk = image_rank_[e];
@@ -835,16 +866,22 @@ void NeighbourSearch::move_anchors(const Box& box) {
       ys_[kk] = image.position(1, planes, anchor[1]);
       zs_[kk] = image.position(2, planes, anchor[2]);
       hs_[kk] = anchor[3];
+      mark_group(kk);
     }
   }
   refit_boxes();
 }
 
-// Tight boxes and largest h of the groups, then of the nodes, children before parents (depth-first order:
-// a node's children follow it, so visiting the nodes backwards reaches every child first).
+// Tight boxes and largest h of the groups that hold a moved anchor (the others' are those of the last refit
+// or build: the same min and max of unchanged anchors), then of every node, children before parents
+// (depth-first order: a node's children follow it, so visiting the nodes backwards reaches every child
+// first).
 void NeighbourSearch::refit_boxes() {
-#pragma omp parallel for schedule(static)
-  for (std::size_t g = 0; g < groups_.size(); ++g) {
+  const auto dirty = static_cast<std::int64_t>(dirty_groups_.size());
+#pragma omp parallel for schedule(static) if (dirty > 64)
+  for (std::int64_t d = 0; d < dirty; ++d) {
+    const std::size_t g = dirty_groups_[std::size_t(d)];
+    group_dirty_[g] = 0;
     Group& group = groups_[g];
     group.lower = group.upper = {xs_[group.begin], ys_[group.begin], zs_[group.begin]};
     group.h_max = 0.0;
@@ -1008,8 +1045,6 @@ void NeighbourSearch::update(const NeighbourInput& input, const Box& box, Neighb
   // lists to their place in index order.
   const std::size_t moved = moved_list_.size();
   fresh_offsets_.assign(moved + 1, 0);
-  if (scratch_.size() < std::size_t(omp_get_max_threads()))
-    scratch_.resize(std::size_t(omp_get_max_threads()));
   const bool periodic = box.any_periodic();
 #pragma omp parallel
   {

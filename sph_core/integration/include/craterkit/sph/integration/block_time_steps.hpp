@@ -33,6 +33,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "craterkit/sph/neighbours/neighbour_search.hpp"
@@ -147,6 +148,7 @@ class BlockSchedule {
   std::vector<std::uint8_t> wanted_;       // per active particle: its next level (choose_levels)
   std::vector<std::uint8_t> wake_floor_;   // per particle: the level a waker asks for (wake)
   std::vector<std::uint32_t> woken_;       // the particles with a wake_floor_
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> wake_found_;  // per thread: (woken, floor)
   std::vector<std::size_t> level_counts_;
 };
 

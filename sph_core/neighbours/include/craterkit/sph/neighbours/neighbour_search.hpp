@@ -231,6 +231,7 @@ class NeighbourSearch {
   // Per-thread state of a build: the thread's region of the lists and its overflow vector.
   struct ThreadScratch {
     std::vector<std::uint32_t> found, candidates;  // overflow lists (and sampling scratch); candidates
+    std::vector<std::uint32_t> movers;             // find_moved: the thread's particles beyond the skin
     std::size_t region_start = 0, region_size = 0, region_used = 0, final_start = 0;
     std::size_t used = 0;           // entries of `found` holding overflow lists
     std::size_t overflow_from = 0;  // first particle whose list went to `found`
@@ -241,11 +242,13 @@ class NeighbourSearch {
   double build_h_max_ = 0.0;        // the largest h of the build (image reach, periodic edge)
   std::array<double, 3> beyond_{};  // how far the deepest particle of the build had crossed each plane
   std::uint64_t restructures_ = 0, searches_ = 0;
-  std::vector<std::uint32_t> image_rank_;  // sorted index of each image entry (image_start_ order)
-  std::vector<std::uint64_t> slot_end_;    // end of each particle's slot in NeighbourLists::neighbours
-  std::uint64_t unused_ = 0;               // entries of abandoned slots (moved to the end)
-  std::vector<std::uint8_t> moved_;        // per particle: re-anchored in this call
-  std::vector<std::uint32_t> moved_list_;  // their indices, ascending
+  std::vector<std::uint32_t> image_rank_;    // sorted index of each image entry (image_start_ order)
+  std::vector<std::uint64_t> slot_end_;      // end of each particle's slot in NeighbourLists::neighbours
+  std::uint64_t unused_ = 0;                 // entries of abandoned slots (moved to the end)
+  std::vector<std::uint8_t> moved_;          // per particle: re-anchored in this call
+  std::vector<std::uint32_t> moved_list_;    // their indices, ascending
+  std::vector<std::uint8_t> group_dirty_;    // per group: holds a moved anchor (move_anchors, refit_boxes)
+  std::vector<std::uint32_t> dirty_groups_;  // those groups
   // remove_particles(): per sorted entry, 1 when its particle has left (empty when none has since the last
   // build).
   std::vector<std::uint8_t> removed_;
