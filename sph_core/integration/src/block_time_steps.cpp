@@ -64,8 +64,13 @@ namespace {
 
 }  // namespace
 
+void BlockSchedule::set_neighbour_levels(int levels) {
+  if (levels < 1) throw std::invalid_argument("block time steps: neighbour levels must be at least 1");
+  next_neighbour_levels_ = levels;
+}
+
 int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists, const PairSupport* support,
-                                   const NeighbourLevels& levels) {
+                                   const NeighbourLevels& levels) const {
   const std::size_t listed = i + levels.offset;
   int highest = 0;
   for (const std::uint32_t entry : lists.of(listed)) {
@@ -73,12 +78,13 @@ int BlockSchedule::neighbour_floor(std::size_t i, const NeighbourLists& lists, c
     if (levels.scheduled[j] == 0 || int(levels.level[j]) <= highest) continue;
     if (support == nullptr || (*support)(listed, entry)) highest = int(levels.level[j]);
   }
-  return highest - block_neighbour_levels;
+  return highest - neighbour_levels_;
 }
 
 void BlockSchedule::assign_levels(double block, std::span<const double> time_step,
                                   std::span<const std::uint8_t> flags, std::size_t count) {
   block_ = block;
+  neighbour_levels_ = next_neighbour_levels_;
   level_.assign(count, 0);
   end_tick_.assign(count, 0);
   start_tick_.assign(count, 0);
@@ -206,13 +212,12 @@ int BlockSchedule::choose_levels(std::span<const double> time_step, const Neighb
     const std::size_t i = active_[k];
     const int current = level_[i];
     // No neighbour is finer than finest_ (every process's levels are within the agreed finest level), so a
-    // particle that wants finest_ - block_neighbour_levels or finer for itself needs no look at them: in the
+    // particle that wants finest_ - neighbour_levels_ or finer for itself needs no look at them: in the
     // substeps of the finest level, the most frequent, that is most of the active particles (in the shock
     // stage).
     const int own = block_level(block_, time_step[i]);
-    int want = own >= finest_ - block_neighbour_levels
-                   ? own
-                   : std::max(own, neighbour_floor(i, lists, support, levels));
+    int want =
+        own >= finest_ - neighbour_levels_ ? own : std::max(own, neighbour_floor(i, lists, support, levels));
     if (want > block_finest_level_limit) bad = std::max(bad, int(i));
     want = std::min(want, block_finest_level_limit);
     int level = current;
@@ -262,7 +267,7 @@ void BlockSchedule::wake(std::span<const std::uint32_t> wakers, std::span<const 
     const std::size_t last = count * (id + 1) / std::size_t(omp_get_num_threads());
     for (std::size_t w = first; w < last; ++w) {
       const std::uint32_t k = wakers[w];
-      const int floor = int(waker_level[k]) - block_neighbour_levels;
+      const int floor = int(waker_level[k]) - neighbour_levels_;
       if (floor <= 0) continue;
       for (const std::uint32_t entry : lists.of(k)) {
         const std::size_t listed = neighbour_index(entry);

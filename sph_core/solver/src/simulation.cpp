@@ -80,6 +80,12 @@ std::vector<double> Simulation::switch_to_late_stage() {
   equations_of_state_.clear();
   for (const auto& m : problem_.materials) equations_of_state_.push_back(m.eos);
   late_stage_active_ = true;
+  // The neighbour rule of the block steps as Saitoh & Makino (2009) give it, a factor 4 between neighbours'
+  // steps, from the next block on. The shock stage keeps a factor 2: with 4 the SCI run's energy error rises
+  // from 2.5e-4 to 4.1e-4 in the first millisecond (the contact), while after the switch the energy-free
+  // medium of the late stage loses nothing by it and the particles thrown out of the fine core hold fewer
+  // neighbours to their short steps (docs/physics.md section 1.12).
+  schedule_.set_neighbour_levels(2);
   return stress_factor;
 }
 

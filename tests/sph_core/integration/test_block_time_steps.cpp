@@ -1,14 +1,15 @@
 // Block time steps (block_time_steps.hpp): the level rule, the schedule of a block (every particle
-// takes 2^level steps that tile the block, no particle more than block_neighbour_levels coarser than a
-// neighbour),
-// and the schedule on a chain whose one particle needs a short step.
+// takes 2^level steps that tile the block, no particle more than neighbour_levels() coarser than a neighbour,
+// at one and at two levels), and the schedule on a chain whose one particle needs a short step.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -83,33 +84,62 @@ TEST(BlockSchedule, NeighbourRuleAndEveryStepTilesTheBlock) {
   step[3] = 1.0 / 64;  // level 6
   std::vector<std::uint8_t> flags(n, particle_active);
   flags[11] = particle_fixed;  // not scheduled
-  BlockSchedule s;
-  s.start(1.0, step, flags, n, lists);
-  EXPECT_EQ(s.finest_level(), 6);
-  // Levels fall by block_neighbour_levels (one) per hop away from particle 3.
-  ASSERT_EQ(block_neighbour_levels, 1);
-  const std::vector<int> expected{3, 4, 5, 6, 5, 4, 3, 2, 1, 0, 0};
-  std::vector<int> activations(n, 0);
-  std::vector<double> elapsed(n, 0.0);
-  double time = 0.0;
-  int substeps = 0;
-  while (!s.finished()) {
-    time += s.advance();
-    ++substeps;
-    for (const auto i : s.active()) {
-      ++activations[i];
-      elapsed[i] += s.active_steps()[i];
-      EXPECT_DOUBLE_EQ(elapsed[i], time) << "particle " << i << " ends its step at the tick";
+  for (const int neighbour_levels : {1, 2}) {
+    SCOPED_TRACE("neighbour levels " + std::to_string(neighbour_levels));
+    BlockSchedule s;
+    if (neighbour_levels != block_neighbour_levels) s.set_neighbour_levels(neighbour_levels);
+    s.start(1.0, step, flags, n, lists);
+    EXPECT_EQ(s.neighbour_levels(), neighbour_levels);
+    EXPECT_EQ(s.finest_level(), 6);
+    // Levels fall by neighbour_levels per hop away from particle 3.
+    std::vector<int> expected(n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      const int hops = std::abs(int(i) - 3);
+      expected[i] = std::max(0, 6 - neighbour_levels * hops);
     }
+    std::vector<int> activations(n, 0);
+    std::vector<double> elapsed(n, 0.0);
+    double time = 0.0;
+    int substeps = 0;
+    while (!s.finished()) {
+      time += s.advance();
+      ++substeps;
+      for (const auto i : s.active()) {
+        ++activations[i];
+        elapsed[i] += s.active_steps()[i];
+        EXPECT_DOUBLE_EQ(elapsed[i], time) << "particle " << i << " ends its step at the tick";
+      }
+      s.relevel(step, lists);
+    }
+    EXPECT_EQ(substeps, 64);
+    EXPECT_DOUBLE_EQ(time, 1.0);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      EXPECT_EQ(activations[i], 1 << expected[i]) << "particle " << i;
+      EXPECT_DOUBLE_EQ(elapsed[i], 1.0);
+    }
+    EXPECT_EQ(activations[11], 0);  // fixed
+  }
+}
+
+TEST(BlockSchedule, NeighbourLevelsChangeAtTheNextBlockAndMustBePositive) {
+  const auto lists = chain(3);
+  const std::vector<double> step{1.0 / 16, 1.0, 1.0};  // level 4
+  const std::vector<std::uint8_t> flags(3, particle_active);
+  BlockSchedule s;
+  s.start(1.0, step, flags, 3, lists);
+  EXPECT_EQ(int(s.levels()[1]), 3);
+  s.set_neighbour_levels(2);
+  EXPECT_EQ(s.neighbour_levels(), block_neighbour_levels) << "not within the block under way";
+  while (!s.finished()) {
+    (void)s.advance();
     s.relevel(step, lists);
+    EXPECT_EQ(int(s.levels()[1]), 3);
   }
-  EXPECT_EQ(substeps, 64);
-  EXPECT_DOUBLE_EQ(time, 1.0);
-  for (std::size_t i = 0; i + 1 < n; ++i) {
-    EXPECT_EQ(activations[i], 1 << expected[i]) << "particle " << i;
-    EXPECT_DOUBLE_EQ(elapsed[i], 1.0);
-  }
-  EXPECT_EQ(activations[11], 0);  // fixed
+  s.start(1.0, step, flags, 3, lists);
+  EXPECT_EQ(s.neighbour_levels(), 2);
+  EXPECT_EQ(int(s.levels()[1]), 2);
+  EXPECT_EQ(int(s.levels()[2]), 0);
+  EXPECT_THROW(s.set_neighbour_levels(0), std::invalid_argument);
 }
 
 TEST(BlockSchedule, LevelsRefineWithinTheBlockAndCoarsenOnlyWhereAligned) {
@@ -153,35 +183,39 @@ TEST(BlockSchedule, LevelsRefineWithinTheBlockAndCoarsenOnlyWhereAligned) {
 TEST(BlockSchedule, TheFinestWakerDecidesAndAWokenParticleWakesNobody) {
   const std::size_t n = 4;
   const auto lists = chain(n);
-  std::vector<double> step{0.5, 0.5, 1.0, 1.0};
   const std::vector<std::uint8_t> flags(n, particle_active);
-  BlockSchedule s;
-  s.start(1.0, step, flags, n, lists);
-  ASSERT_EQ(s.finest_level(), 1);
-  double time = s.advance();
-  ASSERT_EQ(s.active().size(), 2u);  // 0 and 1, at half the block
-  step[0] = 1.0 / 64;
-  s.relevel(step, lists);
-  EXPECT_EQ(s.finest_level(), 6);
-  EXPECT_EQ(int(s.levels()[0]), 6);
-  EXPECT_EQ(int(s.levels()[1]), 5);  // woken from 1
-  EXPECT_EQ(int(s.levels()[2]), 0);  // not by the woken 1
-  std::vector<double> elapsed(n, 0.0);
-  for (const auto i : s.active()) elapsed[i] += s.active_steps()[i];
-  bool two_woken = false;
-  while (!s.finished()) {
-    time += s.advance();
-    for (const auto i : s.active()) elapsed[i] += s.active_steps()[i];
-    const bool one_ended = std::find(s.active().begin(), s.active().end(), 1u) != s.active().end();
+  for (const int neighbour_levels : {1, 2}) {
+    SCOPED_TRACE("neighbour levels " + std::to_string(neighbour_levels));
+    std::vector<double> step{0.5, 0.5, 1.0, 1.0};
+    BlockSchedule s;
+    s.set_neighbour_levels(neighbour_levels);
+    s.start(1.0, step, flags, n, lists);
+    ASSERT_EQ(s.finest_level(), 1);
+    double time = s.advance();
+    ASSERT_EQ(s.active().size(), 2u);  // 0 and 1, at half the block
+    step[0] = 1.0 / 64;
     s.relevel(step, lists);
-    if (one_ended && !two_woken) {
-      EXPECT_EQ(int(s.levels()[2]), 4) << "woken by 1 when its own step ended";
-      two_woken = true;
+    EXPECT_EQ(s.finest_level(), 6);
+    EXPECT_EQ(int(s.levels()[0]), 6);
+    EXPECT_EQ(int(s.levels()[1]), 6 - neighbour_levels);  // woken from 1
+    EXPECT_EQ(int(s.levels()[2]), 0);                     // not by the woken 1
+    std::vector<double> elapsed(n, 0.0);
+    for (const auto i : s.active()) elapsed[i] += s.active_steps()[i];
+    bool two_woken = false;
+    while (!s.finished()) {
+      time += s.advance();
+      for (const auto i : s.active()) elapsed[i] += s.active_steps()[i];
+      const bool one_ended = std::find(s.active().begin(), s.active().end(), 1u) != s.active().end();
+      s.relevel(step, lists);
+      if (one_ended && !two_woken) {
+        EXPECT_EQ(int(s.levels()[2]), 6 - 2 * neighbour_levels) << "woken by 1 when its own step ended";
+        two_woken = true;
+      }
     }
+    EXPECT_TRUE(two_woken);
+    EXPECT_DOUBLE_EQ(time, 1.0);
+    for (std::size_t i = 0; i < n; ++i) EXPECT_DOUBLE_EQ(elapsed[i], 1.0) << "particle " << i;
   }
-  EXPECT_TRUE(two_woken);
-  EXPECT_DOUBLE_EQ(time, 1.0);
-  for (std::size_t i = 0; i < n; ++i) EXPECT_DOUBLE_EQ(elapsed[i], 1.0) << "particle " << i;
 }
 
 TEST(BlockSchedule, CollapsedStepIsAnErrorThatNamesTheParticle) {

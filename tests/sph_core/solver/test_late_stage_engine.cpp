@@ -98,6 +98,26 @@ TEST(LateStageEngine, SwitchLandsOnTransitionTimeAndTheTimeStepGrows) {
   EXPECT_EQ(a.late_stage_max_mach, sim.late_stage_max_mach());
 }
 
+// The block steps' neighbour rule: one level between neighbours in the shock stage, two from the first block
+// after the switch (docs/physics.md section 1.12), also in a run resumed from a state written after it.
+TEST(LateStageEngine, BlockStepsAllowTwoLevelsBetweenNeighboursAfterTheSwitch) {
+  auto config = plates(0);
+  config.simulation.solver.time_step.block_levels = 4;
+  const ProblemSetup problem = build_standard_problem(config);
+  Simulation sim(config.simulation.solver, problem);
+  while (!sim.late_stage_active()) {
+    ASSERT_LT(sim.time(), t_transition) << "the switch was missed";
+    sim.step(config.simulation.run.end_time);
+    EXPECT_EQ(sim.block_schedule().neighbour_levels(), block_neighbour_levels);
+  }
+  EXPECT_EQ(block_neighbour_levels, 1);
+  sim.step(config.simulation.run.end_time);
+  EXPECT_EQ(sim.block_schedule().neighbour_levels(), 2);
+  Simulation resumed(config.simulation.solver, problem, sim.particles(), sim.state());
+  resumed.step(config.simulation.run.end_time);
+  EXPECT_EQ(resumed.block_schedule().neighbour_levels(), 2);
+}
+
 // What the switch carries (simulation.hpp): without gravity there is no lithostatic part, so every
 // particle's pressure is the shock-stage pressure scaled by sqrt(A_low/A) of its material (the elastic
 // energy P^2/(2K) of the wave kept), unless the matrix strain cap of 0.1 holds it. The shock-stage state

@@ -14,10 +14,11 @@
 // Level changes (Saitoh & Makino 2009, ApJ 697, L99, section 2, for the neighbour rule):
 //   - finer at the end of any step (a step ending at tick t is aligned to every finer level);
 //   - coarser by one level at most, and only where the new, longer step is aligned (t a multiple of it);
-//   - never more than two levels coarser than any neighbour, so that a neighbour's step is at most four
-//     times shorter. At the start of a block the rule is applied to all particles until it holds; inside
-//     a block it is applied to each particle when its step ends, and a neighbour in the middle of a step
-//     that the rule forbids is woken: its step is cut short at the next tick aligned to the allowed
+//   - never more than neighbour_levels() levels coarser than any neighbour (a neighbour's step at most 2 or
+//     4 times shorter at one or two levels; Simulation takes one in the shock stage, two after the
+//     late-stage switch). At the start of a block the rule is applied to all particles until it holds;
+//     inside a block it is applied to each particle when its step ends, and a neighbour in the middle of a
+//     step that the rule forbids is woken: its step is cut short at the next tick aligned to the allowed
 //     level, and it continues at that level (Saitoh & Makino 2009: without waking, a blast wave reaches
 //     cold gas that is still in a long step). The particles that wake are those whose step just ended, at
 //     their new levels; a particle woken does not wake others in the same tick (so the result does not
@@ -51,7 +52,9 @@ struct TimeStepCollapse : std::runtime_error {
       : std::runtime_error(what), particle(particle_index) {}
   std::size_t particle;
 };
-// A particle is at most this many levels coarser than any neighbour (its step at most 2^this longer).
+// A particle is at most this many levels coarser than any neighbour (its step at most 2^this longer): the
+// schedule's default, kept in the shock stage. Saitoh & Makino (2009) and SWIFT (Schaller et al. 2024,
+// section 3.4) allow two levels (a factor 4); docs/physics.md section 1.12 says where the engine does.
 inline constexpr int block_neighbour_levels = 1;
 
 // The smallest level l >= 0 with block / 2^l <= step (0 when step >= block).
@@ -70,7 +73,7 @@ class BlockSchedule {
  public:
   // Starts a block of length `block` for the moving (neither fixed nor ejected) particles among the
   // first `count` (the lists' particles; the rest, ejected, never take part) from their own steps,
-  // then raises levels until no particle is more than two levels coarser than a neighbour. Throws
+  // then raises levels until no particle is more than neighbour_levels() coarser than a neighbour. Throws
   // TimeStepCollapse if a level above block_finest_level_limit is needed (so does relevel()). A neighbour is
   // a list entry within the kernel support (`support`, pair_support.hpp), or any entry without it.
   void start(double block, std::span<const double> time_step, std::span<const std::uint8_t> flags,
@@ -112,13 +115,18 @@ class BlockSchedule {
                     const PairSupport* support, const NeighbourLevels& levels);
   void apply_levels(int finest);
   // Wakes the scheduled particles of this schedule that are neighbours (within the support) of `wakers`
-  // (list indices) more than block_neighbour_levels levels finer than they are; waker_level[k]: the level
+  // (list indices) more than neighbour_levels() levels finer than they are; waker_level[k]: the level
   // of list index k (read for the wakers only).
   void wake(std::span<const std::uint32_t> wakers, std::span<const std::uint8_t> waker_level,
             const NeighbourLists& lists, const PairSupport* support, std::size_t offset);
   // Per particle: its level, and whether it is scheduled (for NeighbourLevels).
   [[nodiscard]] std::span<const std::uint8_t> levels() const { return level_; }
   [[nodiscard]] std::span<const std::uint8_t> scheduled() const { return scheduled_; }
+
+  // How many levels coarser than a neighbour a particle may be (>= 1), from the next start() or
+  // assign_levels() on; block_neighbour_levels until set.
+  void set_neighbour_levels(int levels);
+  [[nodiscard]] int neighbour_levels() const { return neighbour_levels_; }
 
   [[nodiscard]] double block() const { return block_; }
   // Time from the start of the block to the current tick, s.
@@ -133,10 +141,12 @@ class BlockSchedule {
  private:
   void refine_to(int level);  // rescales the ticks so that `level` exists
   [[nodiscard]] NeighbourLevels own_levels() const { return {level_, scheduled_, 0}; }
-  [[nodiscard]] static int neighbour_floor(std::size_t i, const NeighbourLists& lists,
-                                           const PairSupport* support, const NeighbourLevels& levels);
+  [[nodiscard]] int neighbour_floor(std::size_t i, const NeighbourLists& lists, const PairSupport* support,
+                                    const NeighbourLevels& levels) const;
 
   double block_ = 0.0;
+  int neighbour_levels_ = block_neighbour_levels;       // of the block under way
+  int next_neighbour_levels_ = block_neighbour_levels;  // from the next block on
   int finest_ = 0;
   std::uint64_t tick_ = 0;
   std::vector<std::uint8_t> level_;        // per particle; only moving particles are scheduled
