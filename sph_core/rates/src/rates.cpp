@@ -4,6 +4,7 @@
 #include "craterkit/sph/rates/gradient_correction.hpp"
 #include "craterkit/sph/rates/stress_rates.hpp"
 #include "pair_geometry.hpp"
+#include "pair_keeping.hpp"
 #include "pair_lanes.hpp"
 
 #include <algorithm>
@@ -29,15 +30,15 @@ using detail::PairCentre;
 using detail::PairFrame;
 
 // The pass is an OpenMP loop over the particles i (rates_impl: i's state in, its rates out) around a
-// j-loop over i's neighbour list (pair_sums). The j-loop first keeps the entries within the support (the
-// prologue of pair_geometry.hpp per entry, kept without a branch), so that the sums do not depend on which
-// superset of the pairs the lists hold, then takes the kept pairs four at a time (pair_lanes.hpp): the
-// pressure force, artificial viscosity, continuity and energy of every pair (for solids too, whose pressure
-// is in the stress force) and, for solids, the corrected stress force, the artificial stress and the
-// velocity-gradient and kernel-moment sums. The template switches (kernel, solid, mirror planes, artificial
-// stress) are resolved once per call in compute_rates. The j-loop is compiled for AVX2 and for the baseline
-// processor (pair_sums_wide, pair_sums_baseline: the same operations, so the same results), the first used
-// where the processor has it (RateOptions::wide_lanes).
+// j-loop over i's neighbour list (pair_sums). The j-loop first keeps the entries within the support
+// (pair_keeping.hpp), so that the sums do not depend on which superset of the pairs the lists hold, then
+// takes the kept pairs four at a time (pair_lanes.hpp): the pressure force, artificial viscosity, continuity
+// and energy of every pair (for solids too, whose pressure is in the stress force) and, for solids, the
+// corrected stress force, the artificial stress and the velocity-gradient and kernel-moment sums. The
+// template switches (kernel, solid, mirror planes, artificial stress) are resolved once per call in
+// compute_rates. The j-loop is compiled for AVX2 and for the baseline processor (pair_sums_wide,
+// pair_sums_baseline: the same operations, so the same results), the first used where the processor has it
+// (RateOptions::wide_lanes).
 
 // Particle fields the fluid pair body reads of j (and the driver of i): structure of arrays over every
 // particle, as Particles and RateWorkspace hold them.
@@ -124,28 +125,6 @@ struct SolidSums {
   double work = 0.0;  // -sum_j m_j v_ij . (B_i grad W): pressure and deviatoric work, matched to the force
 };
 
-// Lane `lane` of the masks of reflection across the mirror planes of axes x, y, z: all ones where the
-// neighbour is an image reflected across that plane, zero where not.
-[[gnu::always_inline]] inline void set_reflections(int lane, const MirrorImage& image, detail::LaneMask& x,
-                                                   detail::LaneMask& y, detail::LaneMask& z) {
-  x[lane] = image.reflected(0) ? -1 : 0;
-  y[lane] = image.reflected(1) ? -1 : 0;
-  z[lane] = image.reflected(2) ? -1 : 0;
-}
-
-// The kept pairs of one particle i: its entries within the support with their separations (pair_sums),
-// one per thread, grown to the longest list.
-struct PairScratch {
-  std::vector<std::uint32_t> entry;
-  std::vector<double> dx, dy, dz, r2, hsum;
-  void hold(std::size_t n) {
-    if (entry.size() >= n) return;
-    n += n / 4 + detail::lane_count;
-    entry.resize(n);
-    for (auto* v : {&dx, &dy, &dz, &r2, &hsum}) v->resize(n);
-  }
-};
-
 // What the j-loop reads.
 struct PairInputs {
   PairFrame frame;
@@ -164,55 +143,14 @@ struct PairInputs {
 template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
 [[gnu::always_inline]] inline std::uint64_t pair_sums(const PairInputs& in, std::size_t i,
                                                       const PairCentre& centre, const FluidParticle& fi,
-                                                      const SolidParticle& si, PairScratch& scratch,
+                                                      const SolidParticle& si, detail::PairScratch& scratch,
                                                       FluidSums& sum, SolidSums& solid_sum) {
   using detail::LaneMask;
   using detail::Lanes;
   constexpr int lanes = detail::lane_count;
-  // The pairs within the support, in list order, their separations taken four at a time (the prologue of
-  // pair_geometry.hpp per lane: the image's position, the minimum image, r^2, h_i + h_j). NaN separations
-  // stay (they reach the sums, as a failure that shows); r = 0 has no direction and is left out.
-  const std::uint64_t first = in.offsets[i], last = in.ends[i];
-  scratch.hold(last - first + lanes);  // the last group writes one past the kept entries
-  const PairFrame& frame = in.frame;
-  std::size_t kept = 0;
-  for (std::uint64_t k = first; k < last; k += lanes) {
-    Lanes xj, yj, zj, hj;
-    LaneMask valid, flip_x = {0, 0, 0, 0}, flip_y = flip_x, flip_z = flip_x;
-    for (int l = 0; l < lanes; ++l) {
-      const bool holds = k + l < last;
-      const MirrorImage image = mirror_image<mirrored>(in.neighbours[holds ? k + l : k]);
-      const std::size_t j = image.index;
-      valid[l] = holds ? -1 : 0;
-      xj[l] = frame.x[j];
-      yj[l] = frame.y[j];
-      zj[l] = frame.z[j];
-      hj[l] = frame.h[j];
-      if constexpr (mirrored) set_reflections(l, image, flip_x, flip_y, flip_z);
-    }
-    if constexpr (mirrored) {  // 2 L_a - x_a across the plane of axis a (mirror_image.hpp)
-      xj = flip_x ? 2.0 * frame.planes.position[0] - xj : xj;
-      yj = flip_y ? 2.0 * frame.planes.position[1] - yj : yj;
-      zj = flip_z ? 2.0 * frame.planes.position[2] - zj : zj;
-    }
-    Lanes dx = centre.x - xj, dy = centre.y - yj, dz = centre.z - zj;
-    // minimum_image.hpp; the half periods are infinite on open axes, where nothing wraps.
-    dx = dx > frame.hx ? dx - frame.Lx : (dx < -frame.hx ? dx + frame.Lx : dx);
-    dy = dy > frame.hy ? dy - frame.Ly : (dy < -frame.hy ? dy + frame.Ly : dy);
-    dz = dz > frame.hz ? dz - frame.Lz : (dz < -frame.hz ? dz + frame.Lz : dz);
-    const Lanes r2 = dx * dx + dy * dy + dz * dz;
-    const Lanes hsum = centre.h + hj;
-    const LaneMask within = ~(r2 >= hsum * hsum) & ~(r2 <= 0.0) & valid;
-    for (int l = 0; l < lanes; ++l) {
-      scratch.entry[kept] = in.neighbours[k + l < last ? k + l : k];
-      scratch.dx[kept] = dx[l];
-      scratch.dy[kept] = dy[l];
-      scratch.dz[kept] = dz[l];
-      scratch.r2[kept] = r2[l];
-      scratch.hsum[kept] = hsum[l];
-      kept += within[l] != 0 ? 1 : 0;
-    }
-  }
+  // The pairs within the support, in list order (pair_keeping.hpp); r = 0 has no direction and is left out.
+  const std::size_t kept = detail::keep_pairs_within_support<mirrored, detail::PairUse::kernel_gradient>(
+      in.frame, centre, in.neighbours, in.offsets[i], in.ends[i], scratch);
 
   const FluidFields& f = in.fluid;
   const SolidFields& s = in.stress;
@@ -248,7 +186,7 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
       if constexpr (!solid) pressurej[l] = f.pressure[j];
       inv_rhoj[l] = f.inv_rho[j];
       volumej[l] = f.volume[j];
-      if constexpr (mirrored) set_reflections(l, image, flip_x, flip_y, flip_z);
+      if constexpr (mirrored) detail::set_reflections(l, image, flip_x, flip_y, flip_z);
     }
     // The image's velocity: -v_a across the plane of axis a (mirror_image.hpp).
     if constexpr (mirrored) {
@@ -394,33 +332,19 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
 template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
 [[gnu::noinline]] std::uint64_t pair_sums_baseline(const PairInputs& in, std::size_t i,
                                                    const PairCentre& centre, const FluidParticle& fi,
-                                                   const SolidParticle& si, PairScratch& scratch,
+                                                   const SolidParticle& si, detail::PairScratch& scratch,
                                                    FluidSums& sum, SolidSums& solid_sum) {
   return pair_sums<Kernel, solid, mirrored, artificial_stress>(in, i, centre, fi, si, scratch, sum,
                                                                solid_sum);
 }
 
-#if defined(__x86_64__)
-#define CRATERKIT_WIDE_LANES gnu::target("avx2")
-bool processor_has_avx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
-#else
-#define CRATERKIT_WIDE_LANES gnu::noinline
-bool processor_has_avx2() {
-  return false;
-}
-#endif
-
 template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
 [[gnu::noinline, CRATERKIT_WIDE_LANES]] std::uint64_t pair_sums_wide(
     const PairInputs& in, std::size_t i, const PairCentre& centre, const FluidParticle& fi,
-    const SolidParticle& si, PairScratch& scratch, FluidSums& sum, SolidSums& solid_sum) {
+    const SolidParticle& si, detail::PairScratch& scratch, FluidSums& sum, SolidSums& solid_sum) {
   return pair_sums<Kernel, solid, mirrored, artificial_stress>(in, i, centre, fi, si, scratch, sum,
                                                                solid_sum);
 }
-#undef CRATERKIT_WIDE_LANES
 
 // Solids, before the pair loop: B = sigma L / rho^2 of every particle, the half of the corrected stress
 // force and of the work term that belongs to one particle of a pair. Once per particle instead of once
@@ -582,10 +506,10 @@ RateSummary rates_impl(Particles& p, const PairList& pairs, const RateOptions& o
 
   const PairInputs inputs{
       frame, fluid, stress, av, pairs.offsets.data(), pairs.ends_of(), pairs.neighbours.data()};
-  const bool wide = options.wide_lanes && processor_has_avx2();
+  const bool wide = options.wide_lanes && detail::processor_has_avx2();
 #pragma omp parallel reduction(min : min_signal_time) reduction(+ : interacting)
   {
-    PairScratch scratch;
+    detail::PairScratch scratch;
 #pragma omp for schedule(dynamic, 128)
     for (std::int64_t ii = 0; ii < n; ++ii) {
       const auto i = selection.at(static_cast<std::size_t>(ii));

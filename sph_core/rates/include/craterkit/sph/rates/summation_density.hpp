@@ -23,9 +23,12 @@ enum class DensityMethod { continuity, summation };
 
 // Overwrites the density of every particle that is neither fixed nor ejected. period: box edge along
 // each periodic axis (0: open), for minimum-image distances, as RateOptions::period; mirror: the symmetry
-// planes the lists were built with, as RateOptions::mirror (image entries are reflected across them).
+// planes the lists were built with, as RateOptions::mirror (image entries are reflected across them);
+// wide_lanes: as RateOptions::wide_lanes (the AVX2 build of the pair sum where the processor has it; the
+// baseline build gives the same bits).
 void compute_summation_density(Particles& particles, const PairList& pairs, KernelType kernel,
-                               const std::array<double, 3>& period, const MirrorPlanes& mirror = {});
+                               const std::array<double, 3>& period, const MirrorPlanes& mirror = {},
+                               bool wide_lanes = true);
 
 [[nodiscard]] std::string_view density_method_name(DensityMethod method) noexcept;
 
