@@ -6,8 +6,7 @@
 // a rebuilt list after a restart): the lanes then take the kept pairs four at a time, so pair k of i always
 // lands in lane k mod 4. The separations are taken four entries at a time (the prologue of pair_geometry.hpp
 // per lane: the image's position, the minimum image, r^2, h_i + h_j) and kept without a branch (about one
-// entry in three is beyond the support in lists with a skin, an unpredictable test). Also where the AVX2
-// build of a j-loop is chosen (pair_lanes.hpp).
+// entry in three is beyond the support in lists with a skin, an unpredictable test).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -41,8 +40,8 @@ struct PairScratch {
 
 // What the pass takes of a pair. The kernel gradient (the rate pass): a pair at r = 0 has no direction and is
 // left out, and the separation x_i - x_j is kept. The kernel value (the density sum): r = 0 counts, W has a
-// value there, and r^2 and h_i + h_j are all the pass reads (three stores fewer per entry: a tenth of the
-// density pass).
+// value there, and r^2 and h_i + h_j are all the pass reads (three stores fewer per entry: 8 % of the density
+// pass, bench/RESULTS.md).
 enum class PairUse { kernel_gradient, kernel_value };
 
 // Keeps the entries first..last of `neighbours` (particle i's list) within the support r < h_i + h_j in
