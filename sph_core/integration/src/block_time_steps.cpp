@@ -64,6 +64,16 @@ namespace {
 
 }  // namespace
 
+std::size_t BlockSchedule::bytes() const {
+  std::size_t bytes =
+      (level_.capacity() + scheduled_.capacity() + wanted_.capacity() + wake_floor_.capacity());
+  bytes += (start_tick_.capacity() + end_tick_.capacity()) * sizeof(std::uint64_t);
+  bytes += (active_.capacity() + woken_.capacity()) * sizeof(std::uint32_t);
+  bytes += active_steps_.capacity() * sizeof(double);
+  for (const auto& found : wake_found_) bytes += found.capacity() * sizeof(found[0]);
+  return bytes;
+}
+
 void BlockSchedule::set_neighbour_levels(int levels) {
   if (levels < 1) throw std::invalid_argument("block time steps: neighbour levels must be at least 1");
   next_neighbour_levels_ = levels;

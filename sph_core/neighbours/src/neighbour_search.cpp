@@ -639,11 +639,15 @@ void NeighbourSearch::lay_out_regions(std::size_t threads, NeighbourLists& lists
     scratch_[u].region_start = start;
     start += scratch_[u].region_size;
   }
-  if (lists.neighbours.size() < start) {
-    // reserve first: resize alone would let std::vector double its capacity (2x the lists' memory)
-    if (lists.neighbours.capacity() < start) lists.neighbours.reserve(start);
-    lists.neighbours.resize(start);
+  if (lists.neighbours.capacity() < start) {
+    // The last build's entries are not read again: free them before allocating (no copy of them, one array
+    // at a time), and leave room for the estimate's variation between builds. Reserving exactly the
+    // estimate let about every other build of the Sedov bench allocate afresh, copying the old lists and
+    // faulting in new pages (bench/RESULTS.md, "The lists' array allocated once").
+    std::vector<std::uint32_t>().swap(lists.neighbours);
+    lists.neighbours.reserve(start + start / 64);  // reserve, not resize: no doubling of the capacity
   }
+  if (lists.neighbours.size() < start) lists.neighbours.resize(start);
 }
 
 // The threads' lists made contiguous in thread order (each thread's final_start set): the regions moved

@@ -925,10 +925,16 @@ double Simulation::bytes_per_particle() const {
         &w.stress_rate_yz, &w.total_strain_rate, &w.distention_rate, &w.distention, &shear_modulus_}) {
     bytes += v->capacity() * sizeof(double);
   }
-  for (const auto& v : rate_workspace_.stress_force) bytes += v.capacity() * sizeof(double);
-  bytes += rate_workspace_.inverse_density.capacity() * sizeof(double);
-  bytes += rate_workspace_.volume.capacity() * sizeof(double);
-  bytes += order_.capacity() * sizeof(std::uint32_t);
+  bytes += rate_workspace_.bytes() + schedule_.bytes();
+  bytes += (order_.capacity() + needed_list_.capacity()) * sizeof(std::uint32_t) + needed_mark_.capacity();
+  // Distributed runs: the exchanges' scratch and the halos' anchors (empty in a serial run).
+  bytes += (owned_list_.capacity() + active_anywhere_.capacity() + shifted_active_.capacity()) *
+           sizeof(std::uint32_t);
+  bytes += held_level_.capacity() + held_present_.capacity();
+  for (const auto* v : {&exchange_values_, &held_steps_, &halo_margin_, &halo_reach_, &halo_anchor_x_,
+                        &halo_anchor_y_, &halo_anchor_z_, &halo_anchor_h_}) {
+    bytes += v->capacity() * sizeof(double);
+  }
   return static_cast<double>(bytes) / static_cast<double>(n);
 }
 

@@ -232,3 +232,18 @@ TEST(BlockSchedule, CollapsedStepIsAnErrorThatNamesTheParticle) {
         << e.what();
   }
 }
+
+// What the schedule holds per particle is counted (Simulation::bytes_per_particle reads it): at least its
+// level, scheduled mark, wake floor, the start and end ticks and the step of each particle.
+TEST(BlockSchedule, BytesCountThePerParticleArrays) {
+  const std::size_t n = 1000;
+  const auto lists = chain(n);
+  const std::vector<double> step(n, 1.0);
+  const std::vector<std::uint8_t> flags(n, particle_active);
+  BlockSchedule s;
+  EXPECT_EQ(s.bytes(), 0u);
+  s.start(1.0, step, flags, n, lists);
+  const std::size_t per_particle = 3 * sizeof(std::uint8_t) + 2 * sizeof(std::uint64_t) + sizeof(double);
+  EXPECT_GE(s.bytes(), n * per_particle);
+  EXPECT_LT(s.bytes(), n * (per_particle + 2 * sizeof(std::uint32_t) + 8));  // and nothing of another size
+}

@@ -137,6 +137,8 @@ class BlockSchedule {
   [[nodiscard]] std::uint64_t ticks_per_block() const { return std::uint64_t{1} << finest_; }
   // Number of particles at each level at the start of the block (for the log).
   [[nodiscard]] const std::vector<std::size_t>& level_counts() const { return level_counts_; }
+  // Bytes held by the per-particle arrays (capacity, as allocated).
+  [[nodiscard]] std::size_t bytes() const;
 
  private:
   void refine_to(int level);  // rescales the ticks so that `level` exists

@@ -155,6 +155,15 @@ struct RateWorkspace {
   // Solids with RateOptions::artificial_stress on: R of every particle (xx, xy, xz, yy, yz, zz), in the
   // units of B (Pa m^6/kg^2), computed with B.
   std::array<std::vector<double>, 6> artificial_stress;
+
+  // Bytes held (capacity, as allocated).
+  [[nodiscard]] std::size_t bytes() const {
+    std::size_t doubles =
+        inverse_density.capacity() + volume.capacity() + signal_time.capacity() + balsara_next.capacity();
+    for (const auto& v : stress_force) doubles += v.capacity();
+    for (const auto& v : artificial_stress) doubles += v.capacity();
+    return doubles * sizeof(double) + neighbour_count.capacity() * sizeof(std::uint32_t);
+  }
 };
 
 struct RateSummary {

@@ -133,7 +133,8 @@ class Simulation {
   [[nodiscard]] const ConservedQuantities& initial_conserved() const { return initial_; }
   // Of all particles (distributed: summed over the processes; collective).
   [[nodiscard]] ConservedQuantities conserved() const;
-  // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch.
+  // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch, the
+  // block schedule, and in distributed runs the exchanges' scratch and the halos' anchors (capacities).
   [[nodiscard]] double bytes_per_particle() const;
   [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
   // Distributed block time steps: how often the halos were found anew within a block because a particle had
