@@ -188,6 +188,10 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
       volumej[l] = f.volume[j];
       if constexpr (mirrored) detail::set_reflections(l, image, flip_x, flip_y, flip_z);
     }
+    // A padding lane (past the last kept pair) repeats a kept pair's values with no mass and no volume:
+    // every term summed below has m_j or V_j as a factor, so the lane adds zeros without a select per sum.
+    mj = valid ? mj : zero;
+    volumej = valid ? volumej : zero;
     // The image's velocity: -v_a across the plane of axis a (mirror_image.hpp).
     if constexpr (mirrored) {
       vxj = flip_x ? -vxj : vxj;
@@ -220,17 +224,17 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
     max_mu = max_mu < minus_mu ? minus_mu : max_mu;
     Lanes force = pi_ij;  // the pressure of solids is in their stress force
     if constexpr (!solid) force += fi.pr2 + pressurej * (inv_rhoj * inv_rhoj);  // symmetric in i, j
-    ax -= valid ? mj * force * gx : zero;
-    ay -= valid ? mj * force * gy : zero;
-    az -= valid ? mj * force * gz : zero;
-    vv_grad += valid ? volumej * v_dot_g : zero;
-    if constexpr (!solid) mv_grad += valid ? mj * v_dot_g : zero;
-    viscous += valid ? mj * pi_ij * v_dot_g : zero;
+    ax -= mj * force * gx;
+    ay -= mj * force * gy;
+    az -= mj * force * gz;
+    vv_grad += volumej * v_dot_g;
+    if constexpr (!solid) mv_grad += mj * v_dot_g;
+    viscous += mj * pi_ij * v_dot_g;
     if constexpr (!solid) {
       if (av.use_balsara) {  // (v_j - v_i) x grad W = grad W x dv (solids take it from G)
-        curl_x += valid ? volumej * (gy * dvz - gz * dvy) : zero;
-        curl_y += valid ? volumej * (gz * dvx - gx * dvz) : zero;
-        curl_z += valid ? volumej * (gx * dvy - gy * dvx) : zero;
+        curl_x += volumej * (gy * dvz - gz * dvy);
+        curl_y += volumej * (gz * dvx - gx * dvz);
+        curl_z += volumej * (gx * dvy - gy * dvx);
       }
     }
 
@@ -285,27 +289,27 @@ template <class Kernel, bool solid, bool mirrored, bool artificial_stress>
         tjy += f4 * (rxy * gx + ryy * gy + ryz * gz);
         tjz += f4 * (rxz * gx + ryz * gy + rzz * gz);
       }
-      ax += valid ? mj * (tix + tjx) : zero;
-      ay += valid ? mj * (tiy + tjy) : zero;
-      az += valid ? mj * (tiz + tjz) : zero;
-      work -= valid ? mj * (dvx * tix + dvy * tiy + dvz * tiz) : zero;
+      ax += mj * (tix + tjx);
+      ay += mj * (tiy + tjy);
+      az += mj * (tiz + tjz);
+      work -= mj * (dvx * tix + dvy * tiy + dvz * tiz);
       // (v_j - v_i) = -dv, grad W = g.
       const Lanes vgx = volumej * gx, vgy = volumej * gy, vgz = volumej * gz;
-      G[0] -= valid ? dvx * vgx : zero;
-      G[1] -= valid ? dvx * vgy : zero;
-      G[2] -= valid ? dvx * vgz : zero;
-      G[3] -= valid ? dvy * vgx : zero;
-      G[4] -= valid ? dvy * vgy : zero;
-      G[5] -= valid ? dvy * vgz : zero;
-      G[6] -= valid ? dvz * vgx : zero;
-      G[7] -= valid ? dvz * vgy : zero;
-      G[8] -= valid ? dvz * vgz : zero;
-      M[0] -= valid ? dx * vgx : zero;
-      M[1] -= valid ? dx * vgy : zero;
-      M[2] -= valid ? dx * vgz : zero;
-      M[3] -= valid ? dy * vgy : zero;
-      M[4] -= valid ? dy * vgz : zero;
-      M[5] -= valid ? dz * vgz : zero;
+      G[0] -= dvx * vgx;
+      G[1] -= dvx * vgy;
+      G[2] -= dvx * vgz;
+      G[3] -= dvy * vgx;
+      G[4] -= dvy * vgy;
+      G[5] -= dvy * vgz;
+      G[6] -= dvz * vgx;
+      G[7] -= dvz * vgy;
+      G[8] -= dvz * vgz;
+      M[0] -= dx * vgx;
+      M[1] -= dx * vgy;
+      M[2] -= dx * vgz;
+      M[3] -= dy * vgy;
+      M[4] -= dy * vgz;
+      M[5] -= dz * vgz;
     }
   }
 
