@@ -168,6 +168,29 @@ void drift(Particles& p, double dt, const Box& box, const SmoothingLengthParamet
   }
 }
 
+double drift_time_within(const Particles& p, std::size_t i, double room) {
+  if (!(room > 0.0)) return 0.0;
+  // Half the room for the path, half for the growth of h, less what the rounding of the drifts (which follow
+  // the parabola to round-off, half an ulp of each coordinate and of h per drift) may add over a block.
+  const double rounding =
+      1e-12 * (std::abs(p.x[i]) + std::abs(p.y[i]) + std::abs(p.z[i]) + p.smoothing_length[i]);
+  const double half_room = 0.5 * (room - rounding);
+  if (!(half_room > 0.0)) return 0.0;
+  const double speed = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+  const double acceleration =
+      std::sqrt(p.acceleration_x[i] * p.acceleration_x[i] + p.acceleration_y[i] * p.acceleration_y[i] +
+                p.acceleration_z[i] * p.acceleration_z[i]);
+  // The path: |x(t) - x| <= |v| t + |a| t^2 / 2 <= half_room, solved for t in the form without cancellation.
+  const double path_time =
+      half_room / (0.5 * speed + std::sqrt(0.25 * speed * speed + 0.5 * acceleration * half_room));
+  // The growth: rho(t) = rho (1 - s t) with s = -drho/rho > 0, and h(t) <= h (rho / rho(t))^(1/3) (the clamps
+  // only lower it), which stays within h + half_room while 1 - s t >= 1 / (1 + half_room / h)^3.
+  const double shrink = -p.density_rate[i] / p.density[i];
+  if (!(shrink > 0.0)) return path_time;
+  const double ratio = 1.0 + half_room / p.smoothing_length[i];
+  return std::min(path_time, (1.0 - 1.0 / (ratio * ratio * ratio)) / shrink);
+}
+
 void predict(Particles& p, double dt, const Box& box, IntegratorWorkspace& w,
              const SmoothingLengthParameters& smoothing) {
   begin_step(p, w, ParticleSelection::all(p.size()));

@@ -780,12 +780,18 @@ void NeighbourSearch::restructure(const NeighbourInput& input, const Box& box, N
 // False when one of them needs a restructure: grown beyond build_h_max_ ((1 + s) times the build's largest h;
 // the image reach and the periodic edge test assumed it), or, with mirror planes, come near a plane it has no
 // image across, or further across a plane than any particle of the build (docs in add_mirror_images).
-bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box) {
+bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box,
+                                 std::span<const std::uint32_t> candidates, bool every_particle) {
   const std::size_t n = particles_;
   const double skin = options_.skin;
-  moved_.resize(n);
+  if (moved_.size() != n) moved_.assign(n, 0);
+  // moved_ is zero outside the last movers (a check of some particles reads and writes only theirs).
+  for (const std::uint32_t i : moved_list_) {
+    if (i < n) moved_[i] = 0;
+  }
   if (scratch_.size() < std::size_t(omp_get_max_threads()))
     scratch_.resize(std::size_t(omp_get_max_threads()));
+  const std::size_t count = every_particle ? n : candidates.size();
   // Each thread checks a contiguous range and lists its movers; the ranges joined in order give them in
   // index order without a second pass over every particle (this runs every substep, for a few movers).
   std::size_t threads = 1;
@@ -796,9 +802,10 @@ bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box) {
     const auto id = std::size_t(omp_get_thread_num());
     std::vector<std::uint32_t>& movers = scratch_[id].movers;
     movers.clear();
-    const std::size_t first = n * id / std::size_t(omp_get_num_threads());
-    const std::size_t last = n * (id + 1) / std::size_t(omp_get_num_threads());
-    for (std::size_t i = first; i < last; ++i) {
+    const std::size_t first = count * id / std::size_t(omp_get_num_threads());
+    const std::size_t last = count * (id + 1) / std::size_t(omp_get_num_threads());
+    for (std::size_t c = first; c < last; ++c) {
+      const std::size_t i = every_particle ? c : candidates[c];
       const std::size_t k = rank_[i];
       const double x = wrap_position(box, 0, input.x[i]);
       const double y = wrap_position(box, 1, input.y[i]);
@@ -808,8 +815,10 @@ bool NeighbourSearch::find_moved(const NeighbourInput& input, const Box& box) {
       const double grown = std::max(0.0, input.smoothing_length[i] - hs_[k]);
       // Written as !(<=) so that a NaN position or h is searched again (and reported by a restructure).
       const bool beyond = !(moved + grown <= skin * hs_[k]);
-      moved_[i] = beyond ? 1 : 0;
-      if (beyond) movers.push_back(std::uint32_t(i));
+      if (beyond) {
+        moved_[i] = 1;
+        movers.push_back(std::uint32_t(i));
+      }
     }
   }
   moved_list_.clear();
@@ -1028,8 +1037,8 @@ void NeighbourSearch::write_moved_lists(NeighbourLists& lists) {
   }
 }
 
-void NeighbourSearch::update(const NeighbourInput& input, const Box& box, NeighbourLists& lists,
-                             bool restructure_now) {
+bool NeighbourSearch::keeps_layout(const NeighbourInput& input, const Box& box,
+                                   const NeighbourLists& lists) const {
   const std::size_t n = input.x.size();
   const bool same_layout = kept_ && built_ && !nodes_.empty() && n == particles_ && input.y.size() == n &&
                            input.z.size() == n && input.smoothing_length.size() == n &&
@@ -1038,10 +1047,39 @@ void NeighbourSearch::update(const NeighbourInput& input, const Box& box, Neighb
                            lists.particle_count() == n && lists.ends.size() == n;
   // Abandoned slots beyond the lists' own size: lay the lists out afresh.
   const bool wasteful = unused_ > lists.neighbours.size() / 2;
-  if (restructure_now || !same_layout || wasteful || !find_moved(input, box)) {
+  return same_layout && !wasteful;
+}
+
+void NeighbourSearch::update(const NeighbourInput& input, const Box& box, NeighbourLists& lists,
+                             bool restructure_now) {
+  if (restructure_now || !keeps_layout(input, box, lists) || !find_moved(input, box, {}, true)) {
     restructure(input, box, lists);
     return;
   }
+  search_moved(box, lists);
+}
+
+bool NeighbourSearch::update_moved(const NeighbourInput& input, const Box& box, NeighbourLists& lists,
+                                   std::span<const std::uint32_t> candidates) {
+  if (!keeps_layout(input, box, lists)) return false;
+  if (!find_moved(input, box, candidates, false)) {
+    for (const std::uint32_t i : moved_list_) moved_[i] = 0;
+    moved_list_.clear();
+    return false;
+  }
+  search_moved(box, lists);
+  return true;
+}
+
+double NeighbourSearch::room(std::size_t i, double x, double y, double z, double h, const Box& box) const {
+  const std::size_t k = rank_[i];
+  const auto d = displacement(box, wrap_position(box, 0, x), wrap_position(box, 1, y),
+                              wrap_position(box, 2, z), xs_[k], ys_[k], zs_[k]);
+  return options_.skin * hs_[k] - std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) -
+         std::max(0.0, h - hs_[k]);
+}
+
+void NeighbourSearch::search_moved(const Box& box, NeighbourLists& lists) {
   if (moved_list_.empty()) return;
   move_anchors(box);
   searches_ += moved_list_.size();

@@ -419,6 +419,42 @@ void Simulation::keep_neighbours() {
   force_rebuild_ = false;
 }
 
+void Simulation::renew_skin_bound(std::size_t i) {
+  const auto& p = problem_.particles;
+  if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) {
+    within_skin_until_[i] = std::numeric_limits<double>::infinity();  // not drifted
+    return;
+  }
+  const double room = search_.room(i, p.x[i], p.y[i], p.z[i], p.smoothing_length[i], problem_.box);
+  within_skin_until_[i] = schedule_.elapsed() + drift_time_within(p, i, room);
+}
+
+void Simulation::keep_neighbours_within_bounds() {
+  auto& p = problem_.particles;
+  auto scope = timers_.measure("neighbours");
+  const NeighbourInput input{std::span<const double>(p.x).first(active_),
+                             std::span<const double>(p.y).first(active_),
+                             std::span<const double>(p.z).first(active_),
+                             std::span<const double>(p.smoothing_length).first(active_)};
+  const double now = schedule_.elapsed();
+  expired_.clear();
+  for (std::size_t i = 0; i < active_; ++i) {
+    if (!(now < within_skin_until_[i])) expired_.push_back(static_cast<std::uint32_t>(i));
+  }
+  if (search_.update_moved(input, problem_.box, lists_, expired_)) {
+    const auto count = static_cast<std::int64_t>(expired_.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t kk = 0; kk < count; ++kk) renew_skin_bound(expired_[static_cast<std::size_t>(kk)]);
+    return;
+  }
+  const std::uint64_t before = search_.restructures();
+  search_.update(input, problem_.box, lists_, true);
+  rebuilds_ += search_.restructures() - before;
+  const auto count = static_cast<std::int64_t>(active_);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < count; ++ii) renew_skin_bound(static_cast<std::size_t>(ii));
+}
+
 void Simulation::evaluate_rates() {
   if (decomposition_ == nullptr) {
     const auto all = ParticleSelection::all(active_);  // ejected particles stay as they left
@@ -582,6 +618,14 @@ void Simulation::advance_block(double block) {
     }
   }
   const TimeStepParameters parameters = time_step_parameters();
+  const bool bounded = parameters_.density == DensityMethod::continuity;
+  if (bounded) {
+    auto scope = timers_.measure("neighbours");
+    within_skin_until_.resize(active_);
+    const auto count = static_cast<std::int64_t>(active_);
+#pragma omp parallel for schedule(static)
+    for (std::int64_t ii = 0; ii < count; ++ii) renew_skin_bound(static_cast<std::size_t>(ii));
+  }
   while (!schedule_.finished()) {
     double dt = 0.0;
     {
@@ -592,7 +636,11 @@ void Simulation::advance_block(double block) {
       auto scope = timers_.measure("integration");
       drift(p, dt, problem_.box, parameters_.smoothing);
     }
-    keep_neighbours();
+    if (bounded) {
+      keep_neighbours_within_bounds();
+    } else {
+      keep_neighbours();
+    }
     const auto active = ParticleSelection::listed(schedule_.active());
     ParticleSelection needed = all;
     {
@@ -614,6 +662,14 @@ void Simulation::advance_block(double block) {
         }
         begin_step(p, integrator_workspace_, active);
       }
+    }
+    if (bounded) {
+      // The active particles' velocity, h and step rates changed; the others' bounds hold to their steps'
+      // ends.
+      auto scope = timers_.measure("neighbours");
+      const auto count = static_cast<std::int64_t>(active.size());
+#pragma omp parallel for schedule(static)
+      for (std::int64_t kk = 0; kk < count; ++kk) renew_skin_bound(active.at(static_cast<std::size_t>(kk)));
     }
     if (between_substeps_) between_substeps_();
   }
@@ -927,6 +983,7 @@ double Simulation::bytes_per_particle() const {
   }
   bytes += rate_workspace_.bytes() + schedule_.bytes();
   bytes += (order_.capacity() + needed_list_.capacity()) * sizeof(std::uint32_t) + needed_mark_.capacity();
+  bytes += within_skin_until_.capacity() * sizeof(double) + expired_.capacity() * sizeof(std::uint32_t);
   // Distributed runs: the exchanges' scratch and the halos' anchors (empty in a serial run).
   bytes += (owned_list_.capacity() + active_anywhere_.capacity() + shifted_active_.capacity()) *
            sizeof(std::uint32_t);

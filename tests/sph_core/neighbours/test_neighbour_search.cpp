@@ -341,6 +341,73 @@ TEST(NeighbourSearch, KeptListsSumTheSamePairsWhateverTheirHistory) {
   EXPECT_EQ(kept.restructures(), 1u);
 }
 
+// update_moved() with the particles that may have left their skins named gives update()'s lists entry for
+// entry, reading no other particle's position: the candidates are those whose room() the round's motion
+// could have used up, and every other particle is given a wrong position, which must not matter. The
+// candidates are a small part of the particles. When a restructure is due it declines and changes nothing.
+TEST(NeighbourSearch, CheckingOnlyTheCandidatesKeepsTheSameLists) {
+  Cloud c = random_cloud(3000, 0.02, 0.06, 0.0, 17);
+  const Box box{{0, 0, 0}, {1, 1, 1}, {true, false, false}};
+  NeighbourSearchOptions options;
+  options.skin = 0.2;
+  NeighbourSearch every(options), named(options);
+  NeighbourLists every_lists, named_lists;
+  every.update(c.input(), box, every_lists, true);
+  named.update(c.input(), box, named_lists, true);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<double> room(c.x.size());
+  std::size_t named_total = 0, moved_total = 0;
+  for (int round = 0; round < 10; ++round) {
+    for (std::size_t i = 0; i < c.x.size(); ++i) room[i] = named.room(i, c.x[i], c.y[i], c.z[i], c.h[i], box);
+    // Each particle moves by at most 0.001 * sqrt(3) and its h grows by at most 0.0005, a few far.
+    std::vector<std::uint32_t> candidates;
+    Cloud hidden = c;  // the positions update_moved() sees: wrong for every particle it is not given
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      const bool far = (i + std::size_t(round)) % 331 == 0;
+      const double step = far ? 0.05 : 0.001;
+      c.x[i] = wrap_position(box, 0, c.x[i] + step * unit(rng));
+      c.y[i] += step * unit(rng);
+      c.z[i] += step * unit(rng);
+      c.h[i] = std::min(0.06, c.h[i] + 0.00025 * (1.0 + unit(rng)));
+      if (far || room[i] <= 0.001 * std::sqrt(3.0) + 0.0005) {
+        candidates.push_back(std::uint32_t(i));
+        hidden.x[i] = c.x[i];
+        hidden.y[i] = c.y[i];
+        hidden.z[i] = c.z[i];
+        hidden.h[i] = c.h[i];
+      } else {
+        hidden.x[i] = -7.0;  // would be found moved if it were read
+      }
+    }
+    every.update(c.input(), box, every_lists, false);
+    ASSERT_TRUE(named.update_moved(hidden.input(), box, named_lists, candidates)) << "round " << round;
+    ASSERT_EQ(std::vector<std::uint32_t>(named.moved().begin(), named.moved().end()),
+              std::vector<std::uint32_t>(every.moved().begin(), every.moved().end()))
+        << "round " << round;
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      ASSERT_EQ(std::vector<std::uint32_t>(named_lists.of(i).begin(), named_lists.of(i).end()),
+                std::vector<std::uint32_t>(every_lists.of(i).begin(), every_lists.of(i).end()))
+          << "round " << round << ", particle " << i;
+    }
+    named_total += candidates.size();
+    moved_total += named.moved().size();
+  }
+  EXPECT_GT(moved_total, 0u);
+  EXPECT_LT(named_total, c.x.size() * 10 / 4);
+  EXPECT_EQ(every.restructures(), 1u);
+  // A candidate grown beyond (1 + s) times the build's largest h needs a restructure: declined, unchanged.
+  const NeighbourLists before = named_lists;
+  Cloud grown = c;
+  grown.h[5] = 1.0;
+  const std::vector<std::uint32_t> one{5};
+  EXPECT_FALSE(named.update_moved(grown.input(), box, named_lists, one));
+  EXPECT_EQ(named_lists.neighbours, before.neighbours);
+  EXPECT_EQ(named_lists.ends, before.ends);
+  EXPECT_TRUE(named.moved().empty());
+  EXPECT_EQ(named.restructures(), 1u);
+}
+
 // Kept lists are laid out in their slots where they were collected: the search holds no second copy of
 // them (its work buffers are a fraction of the entries the lists use).
 TEST(NeighbourSearch, KeptListsAreHeldOnce) {

@@ -81,6 +81,11 @@ void begin_step(const Particles& particles, IntegratorWorkspace& workspace,
 // t^2/2 a^n), so with block time steps (block_time_steps.hpp) every particle is at its predicted state
 // at every substep, whether or not its own step ends there.
 void drift(Particles& particles, double dt, const Box& box, const SmoothingLengthParameters& smoothing);
+// A time (s) for which drift() keeps particle i within `room` (m) of where it is now, counting the growth
+// of its smoothing length: |x(t) - x(0)| + max(0, h(t) - h(0)) <= room for t below it. A lower bound, from
+// the exact parabola of its step's drift (|v| t + |a| t^2 / 2) and its density's linear change; 0 when the
+// room is not positive.
+[[nodiscard]] double drift_time_within(const Particles& particles, std::size_t i, double room);
 
 // Trapezoidal correction with the rates evaluated after predict().
 // neighbour_count: pairs per particle from the rate pass after predict() (RateWorkspace).

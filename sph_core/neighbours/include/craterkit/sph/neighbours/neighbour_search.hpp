@@ -129,6 +129,18 @@ class NeighbourSearch {
   // loop that skips the pairs beyond h_i + h_j sums the same terms in the same order whatever superset it was
   // given: results do not depend on when the lists were searched (restarts, checkpoints). Throws as build().
   void update(const NeighbourInput& input, const Box& box, NeighbourLists& lists, bool restructure);
+  // update() without a restructure, checking only `candidates` (ascending): every other particle is known to
+  // be within its anchor's skin (a bound on its motion, room()), and its position is not read. Returns
+  // false, changing nothing, when a restructure is due: then call update() with every particle's present
+  // position and h.
+  bool update_moved(const NeighbourInput& input, const Box& box, NeighbourLists& lists,
+                    std::span<const std::uint32_t> candidates);
+  // The particles the last update() or update_moved() searched afresh (re-anchored), ascending.
+  [[nodiscard]] std::span<const std::uint32_t> moved() const { return moved_list_; }
+  // How far particle i, at (x, y, z) with smoothing length h, is from leaving its anchor's skin: s H - |x -
+  // X|
+  // - max(0, h - H) (m; negative when it has left).
+  [[nodiscard]] double room(std::size_t i, double x, double y, double z, double h, const Box& box) const;
   // Particles leaving the search (ejecta), without a search: `order` is the permutation the particles went
   // through (new index k holds old particle order[k]), of which the first `kept` stay, in increasing old
   // index. The lists of update() lose the entries of the particles that left and are renumbered; a list's
@@ -199,7 +211,11 @@ class NeighbourSearch {
   // update()'s parts: a whole new build into slotted, sorted lists; the particles that moved beyond their
   // anchor's skin (false when one needs a restructure); their new anchors into the tree; one point query.
   void restructure(const NeighbourInput& input, const Box& box, NeighbourLists& lists);
-  bool find_moved(const NeighbourInput& input, const Box& box);
+  [[nodiscard]] bool keeps_layout(const NeighbourInput& input, const Box& box,
+                                  const NeighbourLists& lists) const;
+  bool find_moved(const NeighbourInput& input, const Box& box, std::span<const std::uint32_t> candidates,
+                  bool every_particle);
+  void search_moved(const Box& box, NeighbourLists& lists);
   void move_anchors(const Box& box);
   void refit_boxes();
   template <bool Periodic>

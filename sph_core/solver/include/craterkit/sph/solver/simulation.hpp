@@ -198,7 +198,13 @@ class Simulation {
   void update_neighbours();  // rebuilds the lists when the skin no longer covers the motion
   // Block time steps: the lists of every particle kept with the skin (NeighbourSearch::update).
   void keep_neighbours();
-  void evaluate_rates();  // neighbours, then the state and the rates of every particle
+  // The same within a serial block, checking against its anchor only a particle whose bound has run out: a
+  // particle drifts along its step's parabola, so until within_skin_until_ it cannot have left its skin.
+  // The same lists as keep_neighbours(). With a summed density, whose values change between a particle's own
+  // steps, every particle is checked (no bound is kept).
+  void keep_neighbours_within_bounds();
+  void renew_skin_bound(std::size_t i);  // from its present state and anchor (the search's room)
+  void evaluate_rates();                 // neighbours, then the state and the rates of every particle
   // The state (equation of state, returns to the yield surface and the crush curve) of `state_for` and
   // the rates of `rates_for`; the lists must be current.
   void evaluate_rates(const ParticleSelection& rates_for, const ParticleSelection& state_for);
@@ -259,7 +265,11 @@ class Simulation {
   IntegratorWorkspace integrator_workspace_;
   std::vector<std::uint32_t> order_;
   BlockSchedule schedule_;
-  std::vector<std::uint8_t> needed_mark_;   // block steps: scratch of neighbourhood_of()
+  std::vector<std::uint8_t> needed_mark_;  // block steps: scratch of neighbourhood_of()
+  // Serial block steps: per particle, the time into the block (s) until which it surely stays within its
+  // anchor's skin; the particles whose bound has run out (scratch).
+  std::vector<double> within_skin_until_;
+  std::vector<std::uint32_t> expired_;
   std::vector<std::uint32_t> needed_list_;  // block steps: the particles whose state is read
   std::uint64_t particle_updates_ = 0;
   PhaseTimers timers_;
