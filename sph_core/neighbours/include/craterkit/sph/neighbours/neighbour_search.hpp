@@ -135,7 +135,8 @@ class NeighbourSearch {
   // position and h.
   bool update_moved(const NeighbourInput& input, const Box& box, NeighbourLists& lists,
                     std::span<const std::uint32_t> candidates);
-  // The particles the last update() or update_moved() searched afresh (re-anchored), ascending.
+  // The particles the last update() or update_moved() found beyond their skins and searched afresh, ascending
+  // (meaningful when it did not restructure; empty after update_moved() declined).
   [[nodiscard]] std::span<const std::uint32_t> moved() const { return moved_list_; }
   // How far particle i, at (x, y, z) with smoothing length h, is from leaving its anchor's skin: s H - |x -
   // X|
