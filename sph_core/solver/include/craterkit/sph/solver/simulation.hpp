@@ -265,12 +265,12 @@ class Simulation {
   IntegratorWorkspace integrator_workspace_;
   std::vector<std::uint32_t> order_;
   BlockSchedule schedule_;
-  std::vector<std::uint8_t> needed_mark_;  // block steps: scratch of neighbourhood_of()
+  std::vector<std::uint8_t> needed_mark_;   // block steps: scratch of neighbourhood_of()
+  std::vector<std::uint32_t> needed_list_;  // block steps: the particles whose state is read
   // Serial block steps: per particle, the time into the block (s) until which it surely stays within its
   // anchor's skin; the particles whose bound has run out (scratch).
   std::vector<double> within_skin_until_;
   std::vector<std::uint32_t> expired_;
-  std::vector<std::uint32_t> needed_list_;  // block steps: the particles whose state is read
   std::uint64_t particle_updates_ = 0;
   PhaseTimers timers_;
   RateSummary rate_summary_{};
