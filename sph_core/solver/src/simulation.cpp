@@ -391,14 +391,16 @@ void Simulation::update_equation_of_state() {
   update_equation_of_state(ParticleSelection::all(active_));  // ejected particles stay as they left
 }
 
+NeighbourInput Simulation::searched_input() const {
+  const auto& p = problem_.particles;
+  return {std::span<const double>(p.x).first(active_), std::span<const double>(p.y).first(active_),
+          std::span<const double>(p.z).first(active_),
+          std::span<const double>(p.smoothing_length).first(active_)};
+}
+
 void Simulation::update_neighbours() {
-  auto& p = problem_.particles;
   auto scope = timers_.measure("neighbours");
-  // Only the active particles (ejecta are behind them) enter the search and hence the pair loops.
-  const NeighbourInput input{std::span<const double>(p.x).first(active_),
-                             std::span<const double>(p.y).first(active_),
-                             std::span<const double>(p.z).first(active_),
-                             std::span<const double>(p.smoothing_length).first(active_)};
+  const NeighbourInput input = searched_input();
   if (force_rebuild_ || search_.needs_rebuild(input)) {
     search_.build(input, problem_.box, lists_);
     ++rebuilds_;
@@ -407,12 +409,8 @@ void Simulation::update_neighbours() {
 }
 
 void Simulation::keep_neighbours() {
-  auto& p = problem_.particles;
   auto scope = timers_.measure("neighbours");
-  const NeighbourInput input{std::span<const double>(p.x).first(active_),
-                             std::span<const double>(p.y).first(active_),
-                             std::span<const double>(p.z).first(active_),
-                             std::span<const double>(p.smoothing_length).first(active_)};
+  const NeighbourInput input = searched_input();
   const std::uint64_t before = search_.restructures();
   search_.update(input, problem_.box, lists_, force_rebuild_);
   rebuilds_ += search_.restructures() - before;
@@ -430,12 +428,8 @@ void Simulation::renew_skin_bound(std::size_t i) {
 }
 
 void Simulation::keep_neighbours_within_bounds() {
-  auto& p = problem_.particles;
   auto scope = timers_.measure("neighbours");
-  const NeighbourInput input{std::span<const double>(p.x).first(active_),
-                             std::span<const double>(p.y).first(active_),
-                             std::span<const double>(p.z).first(active_),
-                             std::span<const double>(p.smoothing_length).first(active_)};
+  const NeighbourInput input = searched_input();
   const double now = schedule_.elapsed();
   expired_.clear();
   for (std::size_t i = 0; i < active_; ++i) {

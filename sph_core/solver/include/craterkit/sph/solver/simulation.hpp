@@ -194,7 +194,10 @@ class Simulation {
   void set_between_substeps(std::function<void()> hook) { between_substeps_ = std::move(hook); }
 
  private:
-  void configure();          // shared by both constructors: laws, rate options, particle storage
+  void configure();  // shared by both constructors: laws, rate options, particle storage
+  // The positions and h of the particles in the search: the active ones (ejecta are behind them, and never
+  // enter the search or the pair loops).
+  [[nodiscard]] NeighbourInput searched_input() const;
   void update_neighbours();  // rebuilds the lists when the skin no longer covers the motion
   // Block time steps: the lists of every particle kept with the skin (NeighbourSearch::update).
   void keep_neighbours();
