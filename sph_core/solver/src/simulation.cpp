@@ -417,14 +417,20 @@ void Simulation::keep_neighbours() {
   force_rebuild_ = false;
 }
 
-void Simulation::renew_skin_bound(std::size_t i) {
+void Simulation::renew_skin_bounds(const ParticleSelection& selection) {
   const auto& p = problem_.particles;
-  if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) {
-    within_skin_until_[i] = std::numeric_limits<double>::infinity();  // not drifted
-    return;
+  const double now = schedule_.elapsed();
+  const auto count = static_cast<std::int64_t>(selection.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t kk = 0; kk < count; ++kk) {
+    const std::size_t i = selection.at(static_cast<std::size_t>(kk));
+    if ((p.flags[i] & (particle_fixed | particle_ejected)) != 0) {
+      within_skin_until_[i] = std::numeric_limits<double>::infinity();  // not drifted
+      continue;
+    }
+    const double room = search_.room(i, p.x[i], p.y[i], p.z[i], p.smoothing_length[i], problem_.box);
+    within_skin_until_[i] = now + drift_time_within(p, i, room);
   }
-  const double room = search_.room(i, p.x[i], p.y[i], p.z[i], p.smoothing_length[i], problem_.box);
-  within_skin_until_[i] = schedule_.elapsed() + drift_time_within(p, i, room);
 }
 
 void Simulation::keep_neighbours_within_bounds() {
@@ -436,17 +442,13 @@ void Simulation::keep_neighbours_within_bounds() {
     if (!(now < within_skin_until_[i])) expired_.push_back(static_cast<std::uint32_t>(i));
   }
   if (search_.update_moved(input, problem_.box, lists_, expired_)) {
-    const auto count = static_cast<std::int64_t>(expired_.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t kk = 0; kk < count; ++kk) renew_skin_bound(expired_[static_cast<std::size_t>(kk)]);
+    renew_skin_bounds(ParticleSelection::listed(expired_));
     return;
   }
   const std::uint64_t before = search_.restructures();
   search_.update(input, problem_.box, lists_, true);
   rebuilds_ += search_.restructures() - before;
-  const auto count = static_cast<std::int64_t>(active_);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t ii = 0; ii < count; ++ii) renew_skin_bound(static_cast<std::size_t>(ii));
+  renew_skin_bounds(ParticleSelection::all(active_));
 }
 
 void Simulation::evaluate_rates() {
@@ -616,9 +618,7 @@ void Simulation::advance_block(double block) {
   if (bounded) {
     auto scope = timers_.measure("neighbours");
     within_skin_until_.resize(active_);
-    const auto count = static_cast<std::int64_t>(active_);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t ii = 0; ii < count; ++ii) renew_skin_bound(static_cast<std::size_t>(ii));
+    renew_skin_bounds(ParticleSelection::all(active_));
   }
   while (!schedule_.finished()) {
     double dt = 0.0;
@@ -661,9 +661,7 @@ void Simulation::advance_block(double block) {
       // The active particles' velocity, h and step rates changed; the others' bounds hold to their steps'
       // ends.
       auto scope = timers_.measure("neighbours");
-      const auto count = static_cast<std::int64_t>(active.size());
-#pragma omp parallel for schedule(static)
-      for (std::int64_t kk = 0; kk < count; ++kk) renew_skin_bound(active.at(static_cast<std::size_t>(kk)));
+      renew_skin_bounds(active);
     }
     if (between_substeps_) between_substeps_();
   }

@@ -206,8 +206,8 @@ class Simulation {
   // The same lists as keep_neighbours(). With a summed density, whose values change between a particle's own
   // steps, every particle is checked (no bound is kept).
   void keep_neighbours_within_bounds();
-  void renew_skin_bound(std::size_t i);  // from its present state and anchor (the search's room)
-  void evaluate_rates();                 // neighbours, then the state and the rates of every particle
+  void renew_skin_bounds(const ParticleSelection& selection);  // from their state and anchors (room())
+  void evaluate_rates();  // neighbours, then the state and the rates of every particle
   // The state (equation of state, returns to the yield surface and the crush curve) of `state_for` and
   // the rates of `rates_for`; the lists must be current.
   void evaluate_rates(const ParticleSelection& rates_for, const ParticleSelection& state_for);
