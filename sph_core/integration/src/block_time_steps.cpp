@@ -51,6 +51,46 @@ int block_level(double block, double step) {
   return level;
 }
 
+void tally_block_steps(double longest, std::span<const double> time_step, std::span<const std::uint8_t> flags,
+                       std::size_t count, BlockStepTally& tally) {
+  for (std::size_t i = 0; i < count; ++i) {
+    if ((flags[i] & (particle_fixed | particle_ejected)) != 0) continue;
+    tally[block_tally_particles] += 1.0;
+    const double ratio = longest / time_step[i];
+    if (!(ratio > 1.0)) {  // a step at least the block's (or no step: reported by the schedule)
+      tally[block_tally_steps] += 1.0;
+      continue;
+    }
+    int exponent = 0;
+    const double mantissa = 2.0 * std::frexp(ratio, &exponent);  // ratio = mantissa 2^(exponent - 1)
+    const double steps = std::ldexp(1.0, exponent - 1);
+    tally[block_tally_steps] += steps;
+    if (mantissa == 1.0) continue;  // a power-of-two fraction of the block: never the shorter step
+    const auto bin = std::min(block_length_phases - 1,
+                              static_cast<std::size_t>((mantissa - 1.0) * double(block_length_phases)));
+    tally[block_tally_shorter + bin] += steps;
+  }
+}
+
+double cheapest_block_length(double longest, const BlockStepTally& tally, double block_work) {
+  // mu_j = 1 + j / K: the bins from j on take the shorter step; mu = 2 (j = K): none does.
+  const double fixed = tally[block_tally_steps] + block_work * tally[block_tally_particles];
+  double shorter = 0.0;
+  for (std::size_t k = 0; k < block_length_phases; ++k) shorter += tally[block_tally_shorter + k];
+  double best_mu = 1.0;
+  double best_work = fixed + shorter;
+  for (std::size_t j = 1; j <= block_length_phases; ++j) {
+    shorter -= tally[block_tally_shorter + j - 1];
+    const double mu = 1.0 + double(j) / double(block_length_phases);
+    const double work = mu * (fixed + shorter);
+    if (work < best_work) {
+      best_work = work;
+      best_mu = mu;
+    }
+  }
+  return longest / best_mu;
+}
+
 namespace {
 
 [[noreturn]] void throw_collapse(double block, double step, std::size_t particle) {

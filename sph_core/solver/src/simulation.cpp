@@ -501,6 +501,15 @@ TimeStepParameters Simulation::time_step_parameters() const {
   return parameters;
 }
 
+namespace {
+
+// A block's passes over every moving particle (the drift at each of its substeps, the schedule's start, the
+// step limits), in rate evaluations per particle: about half of one in the SCI late stage (callgrind,
+// bench/RESULTS.md "Block length by the least work").
+constexpr double block_work_per_particle = 0.5;
+
+}  // namespace
+
 double Simulation::next_block_length() const {
   const auto& p = problem_.particles;
   double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
@@ -517,7 +526,16 @@ double Simulation::next_block_length() const {
   }
   if (!(longest > 0.0)) return std::min(shortest, parameters_.time_step.max_step);  // nothing moves
   const int levels = parameters_.time_step.block_levels;
-  return std::min({longest, std::ldexp(shortest, levels), parameters_.time_step.max_step});
+  const double block = std::min({longest, std::ldexp(shortest, levels), parameters_.time_step.max_step});
+  if (levels == 0 || !late_stage_active_) return block;
+  // After the late-stage switch, the phase of the levels that needs the least work (block_time_steps.hpp):
+  // the bulk of an impact target steps at its own limit instead of at half of it where that pays for the
+  // passes over every particle that more blocks cost. Not in the shock stage, whose energy error follows the
+  // steps: with them closer to their limits the SCI run's doubled (docs/physics.md section 1.12).
+  BlockStepTally tally{};
+  tally_block_steps(block, p.time_step, p.flags, active_, tally);
+  if (decomposition_ != nullptr) decomposition_->sum(tally);
+  return cheapest_block_length(block, tally, block_work_per_particle);
 }
 
 ParticleSelection Simulation::neighbourhood_of(std::span<const std::uint32_t> particles) {

@@ -30,6 +30,7 @@
 //
 // Conservation: pair forces are evaluated at the same time for both particles only when both are active,
 // so momentum and energy are conserved to the integration error, not to round-off as with a global step.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
@@ -59,6 +60,34 @@ inline constexpr int block_neighbour_levels = 1;
 
 // The smallest level l >= 0 with block / 2^l <= step (0 when step >= block).
 [[nodiscard]] int block_level(double block, double step);
+
+// Choosing the block length. Power-of-two levels round every particle's step down, by up to a factor 2: with
+// the block at the longest step L, a particle whose own step is 0.87 L steps L / 2. A block L / mu (1 <= mu
+// <= 2) shifts the levels' phase: the particles with L / step_i = m_i 2^n_i, 1 <= m_i < 2, step 2^-n_i L / mu
+// where m_i <= mu and half that where m_i > mu, so the work per unit time is
+//     mu / L (count(step_i >= L) + sum over the others of 2^n_i (2 if m_i > mu, else 1) + w M),
+// in particle steps, with w M the work of a block's passes over all M moving particles (the drift at every
+// substep, the schedule's start) counted as w steps per particle. The block length minimises it
+// (docs/physics.md section 1.12). The mu are tried at the edges of block_length_phases equal bins of m (and
+// mu = 2), so the chosen block is within a factor 1 + 1 / block_length_phases of the best one by that count.
+// The neighbour rule, which raises levels, is not counted.
+inline constexpr std::size_t block_length_phases = 64;
+// Integers (as doubles, exact to 2^53), so that tallies added in any order, over threads or processes, are
+// the same: [block_tally_particles] the moving particles M, [block_tally_steps] the sum of their 2^n_i (1 for
+// a step of at least L), [block_tally_shorter + k] that sum over the particles with m_i in bin k, whose steps
+// double with a block longer than L / (1 + k / block_length_phases).
+inline constexpr std::size_t block_tally_particles = 0;
+inline constexpr std::size_t block_tally_steps = 1;
+inline constexpr std::size_t block_tally_shorter = 2;
+using BlockStepTally = std::array<double, block_tally_shorter + block_length_phases>;
+// The tally of the moving (neither fixed nor ejected) particles among the first `count`, for a longest block
+// `longest` (s); added to `tally`.
+void tally_block_steps(double longest, std::span<const double> time_step, std::span<const std::uint8_t> flags,
+                       std::size_t count, BlockStepTally& tally);
+// The block length in [longest / 2, longest] with the least work per unit time by `tally` (of the same
+// `longest`), a block's passes over all particles counted as `block_work` steps per particle; of equal ones
+// the longest.
+[[nodiscard]] double cheapest_block_length(double longest, const BlockStepTally& tally, double block_work);
 
 // The levels the neighbour rule reads, indexed like the neighbour lists: in a serial run the schedule's own;
 // over several processes those of the owned particles and of the halo copies (their owners' levels), with the

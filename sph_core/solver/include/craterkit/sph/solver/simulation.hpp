@@ -233,8 +233,9 @@ class Simulation {
   // The given particles and all their neighbours (block time steps: whose state an active particle reads).
   ParticleSelection neighbourhood_of(std::span<const std::uint32_t> particles);
   [[nodiscard]] TimeStepParameters time_step_parameters() const;
-  // The next step (global) or block: the longest particle step, at most 2^block_levels times the
-  // shortest and at most max_step (block_levels = 0: the shortest, the global step).
+  // The next step (global) or block: the longest particle step, at most 2^block_levels times the shortest
+  // and at most max_step (block_levels = 0: the shortest, the global step); after the late-stage switch, the
+  // length within a factor 2 below that with the least work per unit time (cheapest_block_length).
   [[nodiscard]] double next_block_length() const;
   // The materials and the fluid laws (no logging, no rate evaluation); returns each material's stress
   // factor sqrt(A_low/A).
