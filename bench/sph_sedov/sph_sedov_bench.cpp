@@ -6,7 +6,8 @@
 //   sph_sedov_bench [n_per_side ...] [--steps S] [--threads T1,T2] [--skin S] [--continuity]
 //   e.g. sph_sedov_bench 46 100 --steps 20     (about 1e5 and 1e6 particles)
 // Density by kernel summation as in the example; --continuity times the continuity-equation engine that
-// the impact runs use (no density pass).
+// the impact runs use (no density pass). The lists are kept with the engine's default skin (0.1);
+// --skin 0 rebuilds them at every step.
 #include <omp.h>
 
 #include <algorithm>
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
   std::vector<int> sides;
   int steps = 20;
   std::vector<int> thread_counts = {1, 2};
-  NeighbourSearchOptions search;
+  NeighbourSearchOptions search = NeighbourParameters{}.search;  // the engine's default skin
   DensityMethod density = DensityMethod::summation;
   for (int k = 1; k < argc; ++k) {
     const std::string arg = argv[k];

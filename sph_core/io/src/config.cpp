@@ -82,8 +82,7 @@ void read_time_step(TomlTable s, SolverParameters& c) {
 
 void read_neighbours(TomlTable s, SolverParameters& c) {
   auto& n = c.neighbours;
-  // Block time steps check the lists at every substep: without a skin they would be rebuilt at each.
-  n.search.skin = s.number("skin", c.time_step.block_levels > 0 ? 0.1 : n.search.skin, 0.0, 1.0);
+  n.search.skin = s.number("skin", n.search.skin, 0.0, 1.0);
   n.sort_interval = static_cast<std::uint64_t>(s.integer("sort_interval", n.sort_interval, 0, int_max));
   n.halo_skin = s.number("halo_skin", n.halo_skin, 0.0, 2.0);
   s.finish();

@@ -173,7 +173,9 @@ void NeighbourSearch::sort_particles(const NeighbourInput& in, const Box& box, b
     if (box.periodic[a] && !(box.edge(a) > 2.0 * reach)) {
       throw std::invalid_argument("neighbour search: periodic box edge along axis " + std::to_string(a) +
                                   " (" + std::to_string(box.edge(a)) +
-                                  ") must exceed 2 (1 + skin) (h_i + h_j) = " + std::to_string(2.0 * reach));
+                                  ") must exceed 2 (1 + skin) (h_i + h_j) = " + std::to_string(2.0 * reach) +
+                                  " (skin " + std::to_string(options_.skin) +
+                                  "; a smaller [neighbours] skin, down to 0, allows a narrower box)");
     }
   }
   // Kept lists (update()) let h grow by the skin before a restructure: the images are made for that h, and

@@ -30,6 +30,16 @@ std::array<double, 3> periods(const Box& box) {
   return out;
 }
 
+// A distributed run with one global step finds its halos anew at every evaluation, so it cannot keep its
+// lists from step to step: it builds them without a skin (which would only lengthen them), in the search's
+// curve order, as a serial run with skin 0 does (docs/parallel.md, "Serial or round-off").
+NeighbourSearchOptions search_options(const SolverParameters& parameters,
+                                      const Decomposition* decomposition) {
+  NeighbourSearchOptions options = parameters.neighbours.search;
+  if (decomposition != nullptr && parameters.time_step.block_levels == 0) options.skin = 0.0;
+  return options;
+}
+
 // Particles::peak_pressure of the active particles, from their states at the end of the step: the corrected
 // state, whose pressure the equation of state has just refreshed (predicted states do not count).
 void record_peak_pressure(Particles& p, const ParticleSelection& active) {
@@ -322,7 +332,7 @@ void Simulation::drop_halos() {
 Simulation::Simulation(SolverParameters parameters, ProblemSetup problem, Decomposition* decomposition)
     : parameters_(std::move(parameters)),
       problem_(std::move(problem)),
-      search_(parameters_.neighbours.search),
+      search_(search_options(parameters_, decomposition)),
       decomposition_(decomposition) {
   configure();
   take_share_of_the_particles();
@@ -351,7 +361,7 @@ Simulation::Simulation(SolverParameters parameters, ProblemSetup problem, Partic
                        const SolverState& state, Decomposition* decomposition)
     : parameters_(std::move(parameters)),
       problem_(std::move(problem)),
-      search_(parameters_.neighbours.search),
+      search_(search_options(parameters_, decomposition)),
       decomposition_(decomposition) {
   problem_.particles = std::move(particles);
   configure();
@@ -399,6 +409,16 @@ NeighbourInput Simulation::searched_input() const {
 }
 
 void Simulation::update_neighbours() {
+  // One global step with a skin: the lists are kept and searched again only for the particles that left
+  // it, sorted by entry (NeighbourSearch::update), so that the sums do not depend on when a list was
+  // searched: a resumed run adds the same terms in the same order as the run it continues. (Block time steps
+  // keep their lists themselves; this serves only their first and switch evaluations. A distributed run with
+  // one global step finds its halos anew at every evaluation and builds its lists without a skin,
+  // search_options().)
+  if (search_.options().skin > 0.0 && parameters_.time_step.block_levels == 0) {
+    keep_neighbours();
+    return;
+  }
   auto scope = timers_.measure("neighbours");
   const NeighbourInput input = searched_input();
   if (force_rebuild_ || search_.needs_rebuild(input)) {

@@ -16,7 +16,10 @@
 namespace craterkit::sph {
 
 struct NeighbourParameters {
-  NeighbourSearchOptions search{};
+  // Lists with a skin of 0.1 h, kept from step to step and searched again only for the particles that left
+  // it (NeighbourSearch::update): the Sedov bench takes half the time of lists rebuilt at every step
+  // (bench/RESULTS.md, "Kept lists for one global step").
+  NeighbourSearchOptions search{.skin = 0.1};
   std::uint64_t sort_interval = 20;  // steps between space-filling-curve sorts (0: never)
   // Distributed block time steps: each particle's margin for the halos a block keeps is halo_skin h plus its
   // motion over the block (Simulation::add_halos); they are found again within the block only when a particle
