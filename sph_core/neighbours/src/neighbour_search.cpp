@@ -82,8 +82,8 @@ std::size_t NeighbourSearch::workspace_bytes() const {
       image_rank_.capacity() * sizeof(std::uint32_t) + slot_end_.capacity() * sizeof(std::uint64_t) +
       removed_.capacity() + moved_.capacity() + moved_list_.capacity() * sizeof(std::uint32_t) +
       group_dirty_.capacity() + dirty_groups_.capacity() * sizeof(std::uint32_t) +
-      moved_anchor_.capacity() * sizeof(moved_anchor_[0]) +
-      fresh_offsets_.capacity() * sizeof(std::uint64_t) + fresh_.capacity() * sizeof(std::uint32_t);
+      moved_anchor_.capacity() * sizeof(moved_anchor_[0]) + fresh_start_.capacity() * sizeof(std::uint64_t) +
+      fresh_.capacity() * sizeof(fresh_[0]);
   for (const auto& t : scratch_)
     bytes += (t.found.capacity() + t.candidates.capacity() + t.movers.capacity()) * sizeof(std::uint32_t);
   return bytes;
@@ -115,7 +115,7 @@ void NeighbourSearch::release_workspace() {
   release(group_dirty_);
   release(dirty_groups_);
   release(moved_anchor_);
-  release(fresh_offsets_);
+  release(fresh_start_);
   release(fresh_);
 }
 
@@ -1019,22 +1019,20 @@ void NeighbourSearch::insert_entry(NeighbourLists& lists, std::size_t j, std::ui
 void NeighbourSearch::write_moved_lists(NeighbourLists& lists) {
   for (std::size_t m = 0; m < moved_list_.size(); ++m) {
     const std::size_t i = moved_list_[m];
-    const std::uint64_t count = fresh_offsets_[m + 1] - fresh_offsets_[m];
-    if (lists.offsets[i] + count > slot_end_[i]) {
+    const std::span<const std::uint32_t> fresh = fresh_[m];
+    if (lists.offsets[i] + fresh.size() > slot_end_[i]) {
       lists.ends[i] = lists.offsets[i];  // nothing to carry over
-      move_slot(lists, i, count);
+      move_slot(lists, i, fresh.size());
     }
-    std::copy(fresh_.begin() + std::ptrdiff_t(fresh_offsets_[m]),
-              fresh_.begin() + std::ptrdiff_t(fresh_offsets_[m + 1]),
-              lists.neighbours.begin() + std::ptrdiff_t(lists.offsets[i]));
-    lists.ends[i] = lists.offsets[i] + count;
+    std::copy(fresh.begin(), fresh.end(), lists.neighbours.begin() + std::ptrdiff_t(lists.offsets[i]));
+    lists.ends[i] = lists.offsets[i] + fresh.size();
   }
   for (std::size_t m = 0; m < moved_list_.size(); ++m) {
     const auto i = moved_list_[m];
-    for (std::uint64_t e = fresh_offsets_[m]; e < fresh_offsets_[m + 1]; ++e) {
-      const std::size_t j = neighbour_index(fresh_[e]);
+    for (const std::uint32_t entry : fresh_[m]) {
+      const std::size_t j = neighbour_index(entry);
       if (moved_[j] != 0) continue;  // its new list has i already
-      insert_entry(lists, j, neighbour_entry(i, mirror_bits(fresh_[e])));
+      insert_entry(lists, j, neighbour_entry(i, mirror_bits(entry)));
     }
   }
 }
@@ -1085,10 +1083,11 @@ void NeighbourSearch::search_moved(const Box& box, NeighbourLists& lists) {
   if (moved_list_.empty()) return;
   move_anchors(box);
   searches_ += moved_list_.size();
-  // Their new lists: each thread searches a contiguous range of them into its own buffer, then copies its
-  // lists to their place in index order.
+  // Their new lists: each thread searches a contiguous range of them into its own buffer, where
+  // write_moved_lists reads them (in index order) through one span per moved particle.
   const std::size_t moved = moved_list_.size();
-  fresh_offsets_.assign(moved + 1, 0);
+  fresh_start_.resize(moved);
+  fresh_.resize(moved);
   const bool periodic = box.any_periodic();
 #pragma omp parallel
   {
@@ -1103,17 +1102,12 @@ void NeighbourSearch::search_moved(const Box& box, NeighbourLists& lists) {
       } else {
         search_anchor<false>(moved_list_[m], box, t.candidates);
       }
+      fresh_start_[m] = t.found.size();
       t.found.insert(t.found.end(), t.candidates.begin(), t.candidates.end());
-      fresh_offsets_[m + 1] = t.candidates.size();
     }
-#pragma omp barrier
-#pragma omp single
-    {
-      for (std::size_t m = 0; m < moved; ++m) fresh_offsets_[m + 1] += fresh_offsets_[m];
-      fresh_.resize(fresh_offsets_.back());
-    }
-    if (last > first) {
-      std::copy(t.found.begin(), t.found.end(), fresh_.begin() + std::ptrdiff_t(fresh_offsets_[first]));
+    for (std::size_t m = first; m < last; ++m) {  // the buffer no longer moves
+      const std::size_t end = m + 1 < last ? fresh_start_[m + 1] : t.found.size();
+      fresh_[m] = std::span<const std::uint32_t>(t.found.data() + fresh_start_[m], end - fresh_start_[m]);
     }
   }
   write_moved_lists(lists);

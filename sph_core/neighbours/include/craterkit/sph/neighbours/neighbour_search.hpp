@@ -270,8 +270,9 @@ class NeighbourSearch {
   // build).
   std::vector<std::uint8_t> removed_;
   std::vector<std::array<double, 4>> moved_anchor_;  // their new anchors (x, y, z wrapped; h)
-  std::vector<std::uint64_t> fresh_offsets_;         // their new lists, in moved_list_ order (CSR)
-  std::vector<std::uint32_t> fresh_;
+  // Their new lists, in moved_list_ order: spans into the searching thread's scratch `found`.
+  std::vector<std::span<const std::uint32_t>> fresh_;
+  std::vector<std::uint64_t> fresh_start_;  // where each starts in its thread's buffer
 };
 
 }  // namespace craterkit::sph
