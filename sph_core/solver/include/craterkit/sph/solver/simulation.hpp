@@ -198,8 +198,12 @@ class Simulation {
   // The positions and h of the particles in the search: the active ones (ejecta are behind them, and never
   // enter the search or the pair loops).
   [[nodiscard]] NeighbourInput searched_input() const;
-  void update_neighbours();  // rebuilds the lists when the skin no longer covers the motion
-  // Block time steps: the lists of every particle kept with the skin (NeighbourSearch::update).
+  // The lists for an evaluation of every particle: kept (keep_neighbours) with one global step and a skin;
+  // otherwise rebuilt when the skin no longer covers the motion (skin 0, distributed global steps, and the
+  // first and switch evaluations of block time steps).
+  void update_neighbours();
+  // The lists of every particle kept with the skin (NeighbourSearch::update): block time steps, and one
+  // global step with a skin.
   void keep_neighbours();
   // The same within a serial block, checking against its anchor only a particle whose bound has run out: a
   // particle drifts along its step's parabola, so until within_skin_until_ it cannot have left its skin.
