@@ -14,7 +14,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 LABELS = {
-    "cohesionless": "cohesionless (this engine)",
+    "cohesionless": "cohesionless (engine of 5-6 December)",
     "tensile_porosity": "+ tensile porosity from 250 s",
     "friction_0.8": "f = 0.8 from 250 s",
     "cohesion_0.05": "Y0 = 0.05 Pa (not weakened) from 250 s",
@@ -22,6 +22,8 @@ LABELS = {
     "strength_floor_0.09": "Y = f max(P, 0.09 Pa) from t = 0",
     "cohesionless_dx0.5": "dx_max = 0.5 m: cohesionless (sci.toml)",
     "strength_floor_0.045_dx0.5": "dx_max = 0.5 m: Y = f max(P, 0.045 Pa)",
+    "cohesionless_engine_2026-12-07": "cohesionless (engine of 7 December)",
+    "tensile_porosity_from_switch": "+ tensile porosity from the late-stage switch (7 December)",
 }
 
 
@@ -31,7 +33,7 @@ def main(source, figure):
         for row in csv.DictReader(f):
             if row["crater_radius_m"] not in ("", "nan"):
                 curves[row["run"]].append((float(row["time_s"]), float(row["crater_radius_m"])))
-    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    fig, ax = plt.subplots(figsize=(11, 4.5))
     for run, points in curves.items():
         points.sort()
         ax.plot([t for t, _ in points], [r for _, r in points], label=LABELS.get(run, run),
@@ -42,7 +44,7 @@ def main(source, figure):
     ax.set_ylabel("crater radius (m)")
     ax.set_title("SCI crater: the radius after the end of growth (solid 1.0 m, dashed 0.5 m)")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower left")
+    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.tight_layout()
     fig.savefig(figure, dpi=120)
 
