@@ -24,6 +24,8 @@ LABELS = {
     "strength_floor_0.045_dx0.5": "dx_max = 0.5 m: Y = f max(P, 0.045 Pa)",
     "cohesionless_engine_2026-12-07": "cohesionless (engine of 7 December)",
     "tensile_porosity_from_switch": "+ tensile porosity from the late-stage switch (7 December)",
+    "f0.8_engine_2026-12-07": "f = 0.8 from t = 0 (engine of 7 December)",
+    "f0.8_tensile_porosity_from_switch": "f = 0.8, + tensile porosity from the late-stage switch",
 }
 
 
@@ -33,18 +35,24 @@ def main(source, figure):
         for row in csv.DictReader(f):
             if row["crater_radius_m"] not in ("", "nan"):
                 curves[row["run"]].append((float(row["time_s"]), float(row["crater_radius_m"])))
-    fig, ax = plt.subplots(figsize=(11, 4.5))
+    fig, (ax, ax8) = plt.subplots(1, 2, figsize=(13, 4.8), gridspec_kw={"width_ratios": [2, 1]})
     for run, points in curves.items():
         points.sort()
-        ax.plot([t for t, _ in points], [r for _, r in points], label=LABELS.get(run, run),
-                lw=2.2 if run.startswith("cohesionless") else 1.4, ls="--" if run.endswith("dx0.5") else "-")
+        target = ax8 if run.startswith("f0.8_") else ax
+        target.plot([t for t, _ in points], [r for _, r in points], label=LABELS.get(run, run),
+                    lw=2.2 if run.startswith("cohesionless") else 1.4, ls="--" if run.endswith("dx0.5") else "-")
     ax.set_xlim(100, None)
-    ax.set_ylim(6.3, 7.3)
-    ax.set_xlabel("time (s)")
-    ax.set_ylabel("crater radius (m)")
-    ax.set_title("SCI crater: the radius after the end of growth (solid 1.0 m, dashed 0.5 m)")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="center left", bbox_to_anchor=(1.01, 0.5))
+    ax.set_ylim(5.6, 7.3)
+    ax.set_title("SCI crater, f = 0.55: the radius after the end of growth (solid 1.0 m, dashed 0.5 m)", fontsize=10)
+    ax8.set_xlim(100, None)
+    ax8.set_ylim(4.7, 5.6)
+    ax8.set_title("the same with f = 0.8 (1.0 m)", fontsize=10)
+    for a in (ax, ax8):
+        a.set_xlabel("time (s)")
+        a.set_ylabel("crater radius (m)")
+        a.grid(alpha=0.3)
+    ax.legend(fontsize=7.5, loc="lower left")
+    ax8.legend(fontsize=7.5, loc="lower right")
     fig.tight_layout()
     fig.savefig(figure, dpi=120)
 
