@@ -557,6 +557,13 @@ TEST(ImpactSetup, TomlErrorsNameTheKey) {
                   "radius = 1\n")
           .find("impact.boulders[1].name"),
       std::string::npos);
+  EXPECT_NE(parse_error("[impact]\ntensile_porosity = 1\n").find("impact.tensile_porosity"),
+            std::string::npos);
+  EXPECT_FALSE(
+      parse_impact_setup(TomlTable::parse("[impact]\n", "test.toml").table("impact")).tensile_porosity);
+  EXPECT_TRUE(
+      parse_impact_setup(TomlTable::parse("[impact]\ntensile_porosity = true\n", "test.toml").table("impact"))
+          .tensile_porosity);
   // The error-free default table gives the SCI defaults.
   EXPECT_EQ(parse_error("[impact]\n"), "");
 }

@@ -156,6 +156,7 @@ ImpactSetup parse_impact_setup(TomlTable t) {
   s.symmetry = symmetry == "quarter" ? DomainSymmetry::quarter : DomainSymmetry::full;
   s.transition_time = t.number("t_transition", s.transition_time, 0.0, inf);
   s.low_sound_speed_modulus = t.number("A_low", s.low_sound_speed_modulus, 0.0, inf, true);
+  s.tensile_porosity = t.boolean("tensile_porosity", s.tensile_porosity);
   s.escape_speed = t.number("escape_speed", s.escape_speed, 0.0, inf);
   std::set<std::string> names;
   for (auto& table : t.tables("boulders")) {

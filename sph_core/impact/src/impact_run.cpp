@@ -135,6 +135,7 @@ ImpactRun build_impact_run(const ImpactConfig& config) {
   auto& plan = run.problem.late_stage;
   plan.transition_time = summary.transition_time;
   plan.A_low.assign(run.problem.materials.size(), summary.low_sound_speed_modulus);
+  plan.tensile_porosity = config.impact.tensile_porosity;
   // The density-scaled stand-in (material 1) keeps the sound speed of the material it stands for only if its
   // A_low is scaled by the same k as its other stress-like parameters (docs/impact_setup.md).
   plan.A_low[1] *= summary.model_density_scale;

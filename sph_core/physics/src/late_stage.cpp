@@ -9,7 +9,7 @@
 
 namespace craterkit::sph {
 
-Material late_stage_material(const Material& material, double A_low) {
+Material late_stage_material(const Material& material, double A_low, bool tensile_porosity) {
   if (!(A_low > 0.0) || !std::isfinite(A_low)) {
     std::ostringstream text;
     text.precision(17);
@@ -37,18 +37,21 @@ Material late_stage_material(const Material& material, double A_low) {
     out.porosity->porous_sound_speed *= speed_factor;
     // Exactly sqrt(A_low/rho0), the reference sound speed of the new law (not a rounded product).
     out.porosity->matrix_sound_speed = std::sqrt(A_low / reference->density);
+    out.porosity->opens_in_tension = tensile_porosity;
   }
   std::ostringstream text;
   text.precision(6);
-  text << " [late stage: linear law, A_low = " << A_low << " Pa, G scaled by " << stiffness_factor << "]";
+  text << " [late stage: linear law, A_low = " << A_low << " Pa, G scaled by " << stiffness_factor
+       << (out.porosity && tensile_porosity ? ", tensile porosity" : "") << "]";
   out.description += text.str();
   return out;
 }
 
-std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low) {
+std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low,
+                                           bool tensile_porosity) {
   std::vector<Material> out;
   out.reserve(materials.size());
-  for (const auto& m : materials) out.push_back(late_stage_material(m, A_low));
+  for (const auto& m : materials) out.push_back(late_stage_material(m, A_low, tensile_porosity));
   return out;
 }
 

@@ -34,12 +34,26 @@ void update_material_state(Particles& p, std::span<const Material> materials, Ra
     const Material& material = materials[p.material[i]];
     MaterialState s =
         evaluate_material(material, rho, p.specific_energy[i], p.distention[i], p.total_strain[i]);
+    // Tensile porosity (late stage, PAlphaPorosity::opens_in_tension): a matrix stretched below its
+    // reference density, alpha rho < rho_m0, opens pores instead of holding a tension: alpha = rho_m0 / rho
+    // puts P_m = A_low (alpha rho / rho_m0 - 1) at zero, so that any compression loads the particle at once.
+    // Applied again to the same density it gives the same alpha (restarts stay bitwise). Below P_e such a
+    // distention may exceed alpha0; the crush curve binds above P_e only (skipped below).
+    const bool opens = material.porosity && material.porosity->opens_in_tension;
+    if (opens && (p.flags[i] & particle_fixed) == 0) {
+      if (const auto* law = std::get_if<LowSoundSpeed>(&material.eos);
+          law != nullptr && p.distention[i] * rho < law->reference_density) {
+        p.distention[i] = law->reference_density / rho;
+        s = evaluate_material(material, rho, p.specific_energy[i], p.distention[i], p.total_strain[i]);
+      }
+    }
     // Plastic compaction in algebraic form (material_response.hpp): a state left above the crush curve by
     // the last update (a shock front, or the first step past P_e) is put back on it. Skipped within a
     // relative 1e-9 of the curve: the return itself lands on it only to the tolerance of its root
     // finder, and returning again would change the last bits, so that a run resumed from a checkpoint
     // would not continue bitwise (as for the radial return below). Fixed particles do not evolve.
-    if (material.porosity && (p.flags[i] & particle_fixed) == 0) {
+    if (material.porosity && (p.flags[i] & particle_fixed) == 0 &&
+        !(opens && s.pressure <= material.porosity->crush_curve.elastic_pressure)) {
       const PAlphaParameters& crush = material.porosity->crush_curve;
       const double alpha = p.distention[i];
       if (alpha > crush_curve_distention(crush, s.pressure) * (1.0 + 1e-9)) {

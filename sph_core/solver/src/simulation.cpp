@@ -83,7 +83,8 @@ std::vector<double> Simulation::switch_to_late_stage() {
   std::vector<double> stress_factor;
   for (std::size_t id = 0; id < problem_.materials.size(); ++id) {
     const auto reference = solid_reference(problem_.materials[id].eos);
-    switched.push_back(late_stage_material(problem_.materials[id], plan.A_low[id]));  // throws for gases
+    // Throws for gases.
+    switched.push_back(late_stage_material(problem_.materials[id], plan.A_low[id], plan.tensile_porosity));
     stress_factor.push_back(std::sqrt(plan.A_low[id] / reference->bulk_modulus));
   }
   problem_.materials = std::move(switched);

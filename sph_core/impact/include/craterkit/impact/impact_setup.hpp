@@ -110,7 +110,8 @@ struct ImpactSetup {
   DomainSymmetry symmetry = DomainSymmetry::full;
   double transition_time = 0.0;              // t_transition, s; 0: 10 R_dom / c
   double low_sound_speed_modulus = 0.027e6;  // A_low, Pa
-  double escape_speed = 0.0;  // m/s, the body's; 0: ejecta only by leaving the domain (ejecta.hpp)
+  bool tensile_porosity = false;  // after the switch porous material opens pores in tension (late_stage.hpp)
+  double escape_speed = 0.0;      // m/s, the body's; 0: ejecta only by leaving the domain (ejecta.hpp)
   std::vector<ImpactBoulder> boulders;
 };
 

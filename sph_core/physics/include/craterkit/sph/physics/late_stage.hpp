@@ -16,6 +16,8 @@
 //    modulus rule are the same functions of alpha as before. In practice the bulk pressure of the slow
 //    late-stage flow stays far below the elastic limit P_e (for the nominal target P_e/A_low ~ 37 at
 //    A_low = 0.027 MPa), so the distention is frozen after the switch: compaction happens in the shock.
+//    With `tensile_porosity` a porous material's matrix no longer holds tension: material loosened by the
+//    excavation opens pores (PAlphaPorosity::opens_in_tension) and carries load as soon as it is pressed.
 #include <span>
 #include <vector>
 
@@ -25,9 +27,10 @@ namespace craterkit::sph {
 
 // The material after the switch. Throws craterkit::InputError when A_low is not > 0 or the material has
 // no bulk modulus to scale from (an ideal gas), naming the material.
-Material late_stage_material(const Material& material, double A_low);
+Material late_stage_material(const Material& material, double A_low, bool tensile_porosity = false);
 
 // The whole material table (index = material id), switched.
-std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low);
+std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low,
+                                           bool tensile_porosity = false);
 
 }  // namespace craterkit::sph

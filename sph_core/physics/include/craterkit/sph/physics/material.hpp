@@ -27,6 +27,10 @@ struct PAlphaPorosity {
   double porous_sound_speed = 0.0;  // c_e: bulk sound speed of the cold, unloaded material at alpha0, m/s
   double matrix_sound_speed = 0.0;  // c_s: of the matrix law at its reference state, sqrt(A/rho0), m/s
                                     // (derived from [eos] by the loader, not read from the file)
+  // Tensile porosity (late stage only, set by late_stage_material): a matrix stretched below its reference
+  // density opens pores instead of holding a tension; update_material_state() raises the distention to
+  // rho_m0 / rho, where the matrix pressure is zero (docs/strength_and_porosity.md, "Tensile porosity").
+  bool opens_in_tension = false;
 };
 
 struct Material {

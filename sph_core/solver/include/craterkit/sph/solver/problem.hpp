@@ -18,6 +18,8 @@ namespace craterkit::sph {
 struct LateStagePlan {
   double transition_time = 0.0;  // s
   std::vector<double> A_low;     // Pa, index = material id
+  // Porous materials open their pores under tension after the switch (late_stage.hpp).
+  bool tensile_porosity = false;
   [[nodiscard]] bool planned() const { return !A_low.empty(); }
 };
 
