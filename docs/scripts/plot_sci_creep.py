@@ -24,6 +24,8 @@ LABELS = {
     "strength_floor_0.045_dx0.5": "dx_max = 0.5 m: Y = f max(P, 0.045 Pa)",
     "cohesionless_engine_2026-12-07": "cohesionless (engine of 7 December)",
     "tensile_porosity_from_switch": "+ tensile porosity from the late-stage switch (7 December)",
+    "cohesionless_engine_2026-12-07_dx0.5": "dx_max = 0.5 m: cohesionless (engine of 7 December)",
+    "tensile_porosity_from_switch_dx0.5": "dx_max = 0.5 m: + tensile porosity from the switch",
     "f0.8_engine_2026-12-07": "f = 0.8 from t = 0 (engine of 7 December)",
     "f0.8_tensile_porosity_from_switch": "f = 0.8, + tensile porosity from the late-stage switch",
 }
@@ -42,7 +44,7 @@ def main(source, figure):
         target.plot([t for t, _ in points], [r for _, r in points], label=LABELS.get(run, run),
                     lw=2.2 if run.startswith("cohesionless") else 1.4, ls="--" if run.endswith("dx0.5") else "-")
     ax.set_xlim(100, None)
-    ax.set_ylim(5.6, 7.3)
+    ax.set_ylim(5.6, 7.45)
     ax.set_title("SCI crater, f = 0.55: the radius after the end of growth (solid 1.0 m, dashed 0.5 m)", fontsize=10)
     ax8.set_xlim(100, None)
     ax8.set_ylim(4.7, 5.6)
