@@ -47,11 +47,10 @@ Material late_stage_material(const Material& material, double A_low, bool tensil
   return out;
 }
 
-std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low,
-                                           bool tensile_porosity) {
+std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low) {
   std::vector<Material> out;
   out.reserve(materials.size());
-  for (const auto& m : materials) out.push_back(late_stage_material(m, A_low, tensile_porosity));
+  for (const auto& m : materials) out.push_back(late_stage_material(m, A_low));
   return out;
 }
 

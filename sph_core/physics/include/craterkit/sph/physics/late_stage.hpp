@@ -30,7 +30,6 @@ namespace craterkit::sph {
 Material late_stage_material(const Material& material, double A_low, bool tensile_porosity = false);
 
 // The whole material table (index = material id), switched.
-std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low,
-                                           bool tensile_porosity = false);
+std::vector<Material> late_stage_materials(std::span<const Material> materials, double A_low);
 
 }  // namespace craterkit::sph
