@@ -997,33 +997,44 @@ ConservedQuantities Simulation::conserved() const {
   return q;
 }
 
-double Simulation::bytes_per_particle() const {
+MemoryUse Simulation::memory_use() const {
+  MemoryUse use;
   const auto n = problem_.particles.size();
-  if (n == 0) return 0.0;
-  std::size_t bytes = 0;
+  if (n == 0) return use;
+  const auto per_particle = [n](std::size_t bytes) {
+    return static_cast<double>(bytes) / static_cast<double>(n);
+  };
+  std::size_t fields = 0;
   problem_.particles.for_each_field([&](std::string_view, const auto& field) {
-    bytes += field.capacity() * sizeof(typename std::decay_t<decltype(field)>::value_type);
+    fields += field.capacity() * sizeof(typename std::decay_t<decltype(field)>::value_type);
   });
-  bytes += lists_.bytes() + search_.workspace_bytes();
+  use.particle_fields = per_particle(fields);
+  use.neighbour_lists = per_particle(lists_.bytes());
+  use.neighbour_search = per_particle(search_.workspace_bytes());
+  std::size_t integrator = 0;
   const auto& w = integrator_workspace_;
   for (const auto* v :
        {&w.acceleration_x, &w.acceleration_y, &w.acceleration_z, &w.density_rate, &w.energy_rate,
         &w.viscosity_alpha_rate, &w.stress_rate_xx, &w.stress_rate_xy, &w.stress_rate_xz, &w.stress_rate_yy,
-        &w.stress_rate_yz, &w.total_strain_rate, &w.distention_rate, &w.distention, &shear_modulus_}) {
-    bytes += v->capacity() * sizeof(double);
+        &w.stress_rate_yz, &w.total_strain_rate, &w.distention_rate, &w.distention}) {
+    integrator += v->capacity() * sizeof(double);
   }
-  bytes += rate_workspace_.bytes() + schedule_.bytes();
-  bytes += (order_.capacity() + needed_list_.capacity()) * sizeof(std::uint32_t) + needed_mark_.capacity();
-  bytes += within_skin_until_.capacity() * sizeof(double) + expired_.capacity() * sizeof(std::uint32_t);
-  // Distributed runs: the exchanges' scratch and the halos' anchors (empty in a serial run).
-  bytes += (owned_list_.capacity() + active_anywhere_.capacity() + shifted_active_.capacity()) *
-           sizeof(std::uint32_t);
-  bytes += held_level_.capacity() + held_present_.capacity();
+  use.integrator = per_particle(integrator);
+  use.rate_pass = per_particle(rate_workspace_.bytes() + shear_modulus_.capacity() * sizeof(double));
+  std::size_t schedule = schedule_.bytes();
+  schedule += (order_.capacity() + needed_list_.capacity()) * sizeof(std::uint32_t) + needed_mark_.capacity();
+  schedule += within_skin_until_.capacity() * sizeof(double) + expired_.capacity() * sizeof(std::uint32_t);
+  use.schedule = per_particle(schedule);
+  std::size_t distributed =
+      (owned_list_.capacity() + active_anywhere_.capacity() + shifted_active_.capacity()) *
+      sizeof(std::uint32_t);
+  distributed += held_level_.capacity() + held_present_.capacity();
   for (const auto* v : {&exchange_values_, &held_steps_, &halo_margin_, &halo_reach_, &halo_anchor_x_,
                         &halo_anchor_y_, &halo_anchor_z_, &halo_anchor_h_}) {
-    bytes += v->capacity() * sizeof(double);
+    distributed += v->capacity() * sizeof(double);
   }
-  return static_cast<double>(bytes) / static_cast<double>(n);
+  use.distributed = per_particle(distributed);
+  return use;
 }
 
 SolverState Simulation::state() const {

@@ -103,3 +103,27 @@ TEST(BlockTimeSteps, ResultIndependentOfThreadCount) {
   EXPECT_EQ(one.particle_updates(), two.particle_updates());
   engine_test::expect_identical_particles(one.particles(), two.particles());
 }
+
+// Simulation::memory_use splits bytes_per_particle into parts that add up to it; each part holds at least
+// what it must for this run (block steps with kept lists, a fluid with the viscosity switch).
+TEST(BlockTimeSteps, MemoryUseAddsUpToTheBytesPerParticle) {
+  const auto config = small_sod(10);
+  Simulation sim(config.simulation.solver, build_standard_problem(config));
+  for (int block = 0; block < 3; ++block) sim.step(0.2);
+  const MemoryUse use = sim.memory_use();
+  EXPECT_EQ(use.total(), sim.bytes_per_particle());
+
+  std::size_t field_bytes = 0;  // one value of every field
+  sim.particles().for_each_field([&](std::string_view, const auto& field) {
+    field_bytes += sizeof(typename std::decay_t<decltype(field)>::value_type);
+  });
+  EXPECT_GE(use.particle_fields, double(field_bytes));
+  EXPECT_LT(use.particle_fields, 1.25 * double(field_bytes));
+  // Kept lists: an offset and an end per particle and at least the interacting pairs' entries.
+  EXPECT_GE(use.neighbour_lists, 16.0 + 4.0 * sim.mean_neighbours());
+  EXPECT_GT(use.neighbour_search, 0.0);
+  EXPECT_GE(use.integrator, 6.0 * sizeof(double));  // a, drho/dt, du/dt, dalpha/dt of the step's start
+  EXPECT_GE(use.rate_pass, double(sizeof(double) + sizeof(std::uint32_t)));     // signal time, count
+  EXPECT_GE(use.schedule, 3.0 + 2.0 * sizeof(std::uint64_t) + sizeof(double));  // BlockSchedule's arrays
+  EXPECT_EQ(use.distributed, 0.0);
+}

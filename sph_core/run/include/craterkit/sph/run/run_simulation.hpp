@@ -23,6 +23,7 @@
 #include "craterkit/sph/io/config.hpp"
 #include "craterkit/sph/io/snapshot.hpp"
 #include "craterkit/sph/run/run_observer.hpp"
+#include "craterkit/sph/solver/memory_use.hpp"
 #include "craterkit/sph/solver/problem.hpp"
 
 namespace craterkit::sph {
@@ -77,8 +78,9 @@ struct RunSummary {
   // (for an impact into a target held by its shell, about the projectile's), not an error of the scheme.
   bool momentum_conserved = true;
   double bytes_per_particle = 0.0;
-  int threads = 1;    // OpenMP threads per process
-  int processes = 1;  // MPI processes (RunOptions::decomposition)
+  MemoryUse memory_use;  // bytes_per_particle by part (Simulation::memory_use)
+  int threads = 1;       // OpenMP threads per process
+  int processes = 1;     // MPI processes (RunOptions::decomposition)
   bool resumed = false;
   bool ended_by_observer = false;  // an observer ended the run (else end_time or max_steps)
   std::uint64_t neighbour_rebuilds = 0;

@@ -72,6 +72,7 @@
 #include "craterkit/sph/solver/conserved_quantities.hpp"
 #include "craterkit/sph/solver/decomposition.hpp"
 #include "craterkit/sph/solver/ejecta.hpp"
+#include "craterkit/sph/solver/memory_use.hpp"
 #include "craterkit/sph/solver/phase_timers.hpp"
 #include "craterkit/sph/solver/problem.hpp"
 #include "craterkit/sph/solver/solver_parameters.hpp"
@@ -133,9 +134,11 @@ class Simulation {
   [[nodiscard]] const ConservedQuantities& initial_conserved() const { return initial_; }
   // Of all particles (distributed: summed over the processes; collective).
   [[nodiscard]] ConservedQuantities conserved() const;
-  // Memory held per particle: fields, neighbour lists and search buffers, integrator and rate scratch, the
-  // block schedule, and in distributed runs the exchanges' scratch and the halos' anchors (capacities).
-  [[nodiscard]] double bytes_per_particle() const;
+  // Memory held per particle (capacities over the particle count of this process): fields, neighbour lists
+  // and search buffers, integrator and rate scratch, the block schedule, and in distributed runs the
+  // exchanges' scratch and the halos' anchors. bytes_per_particle() is memory_use().total().
+  [[nodiscard]] MemoryUse memory_use() const;
+  [[nodiscard]] double bytes_per_particle() const { return memory_use().total(); }
   [[nodiscard]] std::uint64_t neighbour_rebuilds() const { return rebuilds_; }
   // Distributed block time steps: how often the halos were found anew within a block because a particle had
   // moved beyond its margin (they are found once per block otherwise; docs/parallel.md).
