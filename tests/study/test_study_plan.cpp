@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <ostream>
 
@@ -360,6 +361,23 @@ TEST(StudyPlan, TheShippedExampleStudyPlans) {
     EXPECT_TRUE(run.sized) << run.name;
     EXPECT_NO_THROW(parsed(run)) << run.name;
   }
+}
+
+// Every study shipped in data/studies (each file with a [study] table; example_base.toml is a base) plans,
+// and each of its runs is a configuration the engine parses: a shipped study never stops at its first run.
+TEST(StudyPlan, EveryShippedStudyPlans) {
+  std::size_t studies = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(data_file("studies"))) {
+    if (entry.path().extension() != ".toml") continue;
+    if (read(entry.path()).find("[study]") == std::string::npos) continue;
+    const Study study = load_study(entry.path());
+    Scratch scratch;
+    const StudyPlan p = plan_study(study, scratch.path() / "out");
+    EXPECT_FALSE(p.runs.empty()) << entry.path();
+    for (const auto& run : p.runs) EXPECT_NO_THROW(parsed(run)) << entry.path() << ": " << run.name;
+    ++studies;
+  }
+  EXPECT_GE(studies, 5u);  // example, main_job, the two coarse studies, sci_trends
 }
 
 TEST(StudyPlan, ConfigurationKeysComeFirstAndTheirCellsAreAsGiven) {
