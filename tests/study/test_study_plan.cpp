@@ -364,7 +364,7 @@ TEST(StudyPlan, TheShippedExampleStudyPlans) {
 }
 
 // Every study shipped in data/studies (each file with a [study] table; example_base.toml is a base) plans,
-// and each of its runs is a configuration the engine parses: a shipped study never stops at its first run.
+// and each of its runs is a configuration the engine parses, so that no shipped study is refused when run.
 TEST(StudyPlan, EveryShippedStudyPlans) {
   std::size_t studies = 0;
   for (const auto& entry : std::filesystem::directory_iterator(data_file("studies"))) {
