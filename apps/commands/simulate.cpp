@@ -50,7 +50,7 @@ nlohmann::json summary_json(const sph::RunSummary& s) {
                         {"relative_energy_error", s.relative_energy_error},
                         {"relative_momentum_error", s.relative_momentum_error},
                         {"momentum_conserved", s.momentum_conserved},
-                        {"bytes_per_particle", s.bytes_per_particle},
+                        {"bytes_per_particle", s.memory_use.total()},
                         {"bytes_per_particle_by_part",
                          {{"particle_fields", s.memory_use.particle_fields},
                           {"neighbour_lists", s.memory_use.neighbour_lists},
@@ -146,7 +146,7 @@ void print_summary(const sph::RunSummary& summary, const std::string& out,
   fmt::print("{} ({}): {} particles, {} steps to t = {:.6g} s in {:.3f} s wall on {}\n", summary.name,
              summary.setup, summary.particles, summary.steps, summary.time, summary.wall_seconds, cores);
   fmt::print("  {:.4g} particle updates/s, {:.1f} neighbours/particle, {:.0f} bytes/particle\n",
-             summary.particle_updates_per_second, summary.mean_neighbours, summary.bytes_per_particle);
+             summary.particle_updates_per_second, summary.mean_neighbours, summary.memory_use.total());
   if (summary.momentum_conserved) {
     fmt::print("  relative energy error {:.3e}, relative momentum error {:.3e}\n",
                summary.relative_energy_error, summary.relative_momentum_error);

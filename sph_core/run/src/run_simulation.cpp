@@ -229,7 +229,6 @@ void summarise(const Simulation& sim, RunSummary& summary) {
   summary.momentum_conserved =
       gravity[0] == 0.0 && gravity[1] == 0.0 && gravity[2] == 0.0 && !has_fixed && !sim.box().any_mirror();
   summary.memory_use = sim.memory_use();
-  summary.bytes_per_particle = summary.memory_use.total();
   summary.neighbour_rebuilds = sim.neighbour_rebuilds();
   summary.halos_found_anew = sim.halos_found_anew();
   const EjectedTotals ejected = sim.ejected_totals();

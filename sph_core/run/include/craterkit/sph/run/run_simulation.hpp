@@ -77,8 +77,7 @@ struct RunSummary {
   // so that total momentum is not conserved: relative_momentum_error is then the momentum they took up
   // (for an impact into a target held by its shell, about the projectile's), not an error of the scheme.
   bool momentum_conserved = true;
-  double bytes_per_particle = 0.0;
-  MemoryUse memory_use;  // bytes_per_particle by part (Simulation::memory_use)
+  MemoryUse memory_use;  // bytes per particle by part; memory_use.total() is Simulation::bytes_per_particle
   int threads = 1;       // OpenMP threads per process
   int processes = 1;     // MPI processes (RunOptions::decomposition)
   bool resumed = false;
