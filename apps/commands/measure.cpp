@@ -169,8 +169,10 @@ void run_measure(const MeasureOptions& options) {
              result.crater_radius, result.crater_radius_uncertainty, result.radii[0], result.radii[1],
              result.radii[2], result.radii[3]);
   fmt::print(
-      "  depth {:.4g} m, rim height {:.4g} m at r = {:.4g} m, volume {:.4g} m^3, ejected mass {:.4g} kg\n",
-      result.depth, result.rim_height, result.rim_radius, result.volume, result.ejected_mass);
+      "  depth {:.4g} m, rim height {:.4g} m at r = {:.4g} m, wall slope {:.3g} deg, volume {:.4g} m^3, "
+      "ejected mass {:.4g} kg\n",
+      result.depth, result.rim_height, result.rim_radius, result.wall_slope, result.volume,
+      result.ejected_mass);
   for (const auto& b : result.boulders) {
     fmt::print("  boulder {}: displaced by {:.4g} m ({:.4g}, {:.4g}, {:.4g})\n", b.name,
                b.displacement_magnitude, b.displacement[0], b.displacement[1], b.displacement[2]);

@@ -88,6 +88,7 @@ nlohmann::json summary_json(const impact::ImpactRunSummary& s) {
     out["crater_radius"] = number_or_null(s.crater->crater_radius);
     out["crater_radius_uncertainty"] = number_or_null(s.crater->crater_radius_uncertainty);
     out["crater_depth"] = number_or_null(s.crater->depth);
+    out["crater_wall_slope_deg"] = number_or_null(s.crater->wall_slope);
   }
   out["crater_growth_ended"] = s.crater_growth_ended;
   out["crater_growth_end_time"] = number_or_null(s.crater_growth_end_time.value_or(NAN));
@@ -126,10 +127,13 @@ void print_dry_run(const std::string& name, const std::string& setup, const sph:
 
 void print_crater(const impact::ImpactRunSummary& summary) {
   if (!summary.crater) return;
-  fmt::print("  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m{}; ejected {} particles ({:.4g} kg)\n",
-             summary.crater->crater_radius, summary.crater->crater_radius_uncertainty, summary.crater->depth,
-             summary.crater_growth_ended ? " (crater growth ended)" : "", summary.run.ejected_particles,
-             summary.run.ejected_mass);
+  fmt::print(
+      "  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m, wall slope {:.3g} deg{}; ejected {} particles "
+      "({:.4g} "
+      "kg)\n",
+      summary.crater->crater_radius, summary.crater->crater_radius_uncertainty, summary.crater->depth,
+      summary.crater->wall_slope, summary.crater_growth_ended ? " (crater growth ended)" : "",
+      summary.run.ejected_particles, summary.run.ejected_mass);
   if (!summary.crater_growth_ended && summary.crater_growth_end_time) {
     fmt::print(
         "  crater growth ended at t = {:.6g} s (radius {:.4g} m then); the run went on to t = {:.6g} s\n",

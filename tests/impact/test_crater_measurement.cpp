@@ -244,6 +244,23 @@ TEST(CraterMeasurement, BowlsOnTerrainFollowingLatticesMatchTheAnalyticCraters) 
   }
 }
 
+// A conical crater (flat floor of radius R - d / tan(beta), wall at beta up to the edge, a rim beyond) on a
+// terrain-following lattice: the wall slope, fitted between 20 and 80 % of the depth, recovers beta. The band
+// keeps 0.2 d = 1.6 dx from the floor's and the edge's corners, where the kernel rounds the profile over
+// about one h; tolerance 0.25 degrees (measured: within 0.05).
+TEST(CraterMeasurement, WallSlopeOfAConeIsItsAngle) {
+  for (const double beta_deg : {25.0, 35.0, 45.0}) {
+    SCOPED_TRACE(beta_deg);
+    const double R = 20.0 * dx, d = 8.0 * dx, w = 5.0 * dx, s = std::tan(beta_deg * pi / 180.0);
+    const RimmedCrater cone{R, w, s, [R, d, s](double r) { return std::max(-d, s * (r - R)); }};
+    const Particles p = make_target(axisymmetric(cone), R + w + 6.0 * dx, d + 6.0 * dx, Build::conforming);
+    const CraterMeasurement m = measure_crater(p, options());
+    EXPECT_NEAR(m.crater_radius, R, 0.1 * dx);
+    EXPECT_NEAR(m.depth, d, 0.1 * dx);
+    EXPECT_NEAR(m.wall_slope, beta_deg, 0.25);
+  }
+}
+
 // The same with the Wendland C2 kernel (h = 1.3 dx): same tolerances on radii and depth.
 TEST(CraterMeasurement, WendlandKernelGivesTheSameCrater) {
   const BowlCase c = bowl_cases()[0];
@@ -614,6 +631,7 @@ TEST(CraterMeasurement, NoCraterIsReportedNotInvented) {
   const Particles p = make_target([](double, double) { return 0.0; }, 8.0, 3.0);
   const CraterMeasurement m = measure_crater(p, options());
   EXPECT_TRUE(std::isnan(m.crater_radius));
+  EXPECT_TRUE(std::isnan(m.wall_slope));
   EXPECT_FALSE(m.warnings.empty());
   for (const auto& s : m.profile) EXPECT_LT(std::abs(s.mean_height), 0.1 * dx);
 }

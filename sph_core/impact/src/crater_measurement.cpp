@@ -444,6 +444,33 @@ void profile_and_rim(CraterMeasurement& m, const PolarGrid& g, const SurfaceSamp
   }
 }
 
+// The wall's slope: the least-squares line z = a + b r through the azimuthal mean profile inside the crater
+// radius, over the samples between 20 and 80 % of the depth below z = 0, which leave out the rounded edge
+// and the floor; atan(b) in degrees (NaN without a depth or with fewer than three such samples).
+void wall_slope(CraterMeasurement& m) {
+  m.wall_slope = std::numeric_limits<double>::quiet_NaN();
+  if (!(m.depth > 0.0) || !std::isfinite(m.crater_radius)) return;
+  double n = 0.0, sum_r = 0.0, sum_z = 0.0;
+  const auto in_band = [&](const ProfileSample& s) {
+    return s.radius < m.crater_radius && s.mean_height >= -0.8 * m.depth && s.mean_height <= -0.2 * m.depth;
+  };
+  for (const ProfileSample& s : m.profile) {
+    if (!in_band(s)) continue;
+    n += 1.0;
+    sum_r += s.radius;
+    sum_z += s.mean_height;
+  }
+  if (n < 3.0) return;
+  const double mean_r = sum_r / n, mean_z = sum_z / n;
+  double srr = 0.0, srz = 0.0;
+  for (const ProfileSample& s : m.profile) {
+    if (!in_band(s)) continue;
+    srr += (s.radius - mean_r) * (s.radius - mean_r);
+    srz += (s.radius - mean_r) * (s.mean_height - mean_z);
+  }
+  if (srr > 0.0) m.wall_slope = std::atan(srz / srr) * 180.0 / std::numbers::pi;
+}
+
 // Where one boulder went: the mass-weighted centre of its non-ejected particles (selected by id, or by
 // material id when it has no ids) minus its initial centre, and the mass of its ejected ones.
 BoulderDisplacement track_boulder(const Particles& p, const BoulderSpec& spec) {
@@ -501,6 +528,7 @@ CraterMeasurement measure(const Particles& p, const CraterMeasurementOptions& o)
   outline_shape(m);
   depth_and_volume(m, g, samples);
   profile_and_rim(m, g, samples);
+  wall_slope(m);
 
   for (const auto& spec : o.boulders) {
     m.boulders.push_back(track_boulder(p, spec));
@@ -662,6 +690,7 @@ std::string crater_json_text(const CraterMeasurement& m, double time) {
             {"depth", m.depth},
             {"rim_height", m.rim_height},
             {"rim_radius", m.rim_radius},
+            {"wall_slope_deg", m.wall_slope},
             {"volume", m.volume},
             {"ejected_mass", m.ejected_mass},
             {"ejected_particles", m.ejected_particles},

@@ -37,6 +37,8 @@
 //   depth               -(lowest surface sample inside the edge of its ray): apparent depth below z = 0;
 //   profile z(r)        the surface height averaged over the azimuths at each r (NaN samples skipped);
 //   rim height/radius   maximum of the azimuthal profile outside the crater radius, and where;
+//   wall slope          least-squares slope (degrees) of the profile inside the crater radius between 20
+//                       and 80 % of the depth: the wall without its rounded edge and the floor;
 //   volume              sum over samples inside the edge of their ray of max(0, -z_s) r dr dphi: the
 //                       apparent crater volume below the pre-impact plane (fallback material reduces it);
 //   ejected mass        total mass of particles flagged particle_ejected (and per material id; four
@@ -169,8 +171,10 @@ struct CraterMeasurement {
   double depth = 0.0;                             // m, below z = 0
   double rim_height = 0.0;                        // m, maximum of the profile outside the crater radius
   double rim_radius = 0.0;                        // m
-  double volume = 0.0;                            // m^3, below z = 0 and inside the edge
-  double ejected_mass = 0.0;                      // kg
+  // degrees: least-squares slope of the profile inside the crater radius between 20 and 80 % of the depth
+  double wall_slope = 0.0;
+  double volume = 0.0;                // m^3, below z = 0 and inside the edge
+  double ejected_mass = 0.0;          // kg
   std::size_t ejected_particles = 0;  // particles flagged ejected in the set (not scaled by symmetry)
   std::vector<std::pair<int, double>> ejected_mass_by_material;  // (material id, kg)
   std::vector<RayMeasurement> rays;                              // n_azimuths
