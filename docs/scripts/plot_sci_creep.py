@@ -35,6 +35,8 @@ def main(source, figure):
     curves = defaultdict(list)
     with open(source, newline="") as f:
         for row in csv.DictReader(f):
+            if row["run"].startswith("rest_"):  # the runs to rest: plot_sci_rest.py
+                continue
             if row["crater_radius_m"] not in ("", "nan"):
                 curves[row["run"]].append((float(row["time_s"]), float(row["crater_radius_m"])))
     fig, (ax, ax8) = plt.subplots(1, 2, figsize=(13, 4.8), gridspec_kw={"width_ratios": [2, 1]})

@@ -1,6 +1,6 @@
 #pragma once
 // Memory a simulation holds per particle, by part (Simulation::memory_use; `craterkit simulate --json`
-// reports it as bytes_per_particle_by_part; bench/RESULTS.md "Memory of an impact run").
+// reports it as bytes_per_particle_by_part; bench/RESULTS.md "Memory of an impact run, by part").
 
 namespace craterkit::sph {
 
