@@ -128,9 +128,8 @@ void print_dry_run(const std::string& name, const std::string& setup, const sph:
 void print_crater(const impact::ImpactRunSummary& summary) {
   if (!summary.crater) return;
   fmt::print(
-      "  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m, wall slope {:.3g} deg{}; ejected {} particles "
-      "({:.4g} "
-      "kg)\n",
+      "  crater radius {:.4g} +- {:.2g} m, depth {:.4g} m, wall slope {:.3g} deg{}; "
+      "ejected {} particles ({:.4g} kg)\n",
       summary.crater->crater_radius, summary.crater->crater_radius_uncertainty, summary.crater->depth,
       summary.crater->wall_slope, summary.crater_growth_ended ? " (crater growth ended)" : "",
       summary.run.ejected_particles, summary.run.ejected_mass);
