@@ -104,8 +104,10 @@ def main():
         return
     at = ratio > 0.95
     print(f"at P > 0: {len(ratio)}, at their yield limit (sqrt(J2) > 0.95 f P): {int(at.sum())}")
-    print(f"  Lode parameter b of those at the limit: {pct(lode[at])}" if at.any() else "")
-    ranks = np.bincount(np.array(hoop_rank)[at], minlength=3) if at.any() else [0, 0, 0]
+    if not at.any():
+        return
+    print(f"  Lode parameter b of those at the limit: {pct(lode[at])}")
+    ranks = np.bincount(np.array(hoop_rank)[at], minlength=3)
     print(f"  hoop stress the major / intermediate / minor principal stress: {ranks[0]} / {ranks[1]} / {ranks[2]}")
     for k, name in enumerate(("S_tn", "S_tt", "S_nn", "S_hoop")):
         print(f"  {name} / P: {pct(frame[at, k])}")

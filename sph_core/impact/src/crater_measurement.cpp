@@ -444,6 +444,10 @@ void profile_and_rim(CraterMeasurement& m, const PolarGrid& g, const SurfaceSamp
   }
 }
 
+double degrees(double radians) {
+  return radians * (180.0 / std::numbers::pi);
+}
+
 // The wall's slope: the least-squares line z = a + b r through the azimuthal mean profile inside the crater
 // radius, over the samples between 20 and 80 % of the depth below z = 0, which leave out the rounded edge
 // and the floor; atan(b) in degrees (NaN without a depth or with fewer than three such samples).
@@ -468,7 +472,7 @@ void wall_slope(CraterMeasurement& m) {
     srr += (s.radius - mean_r) * (s.radius - mean_r);
     srz += (s.radius - mean_r) * (s.mean_height - mean_z);
   }
-  if (srr > 0.0) m.wall_slope = std::atan(srz / srr) * 180.0 / std::numbers::pi;
+  if (srr > 0.0) m.wall_slope = degrees(std::atan(srz / srr));
 }
 
 // Where one boulder went: the mass-weighted centre of its non-ejected particles (selected by id, or by
@@ -562,10 +566,6 @@ void validate(const CraterMeasurementOptions& o) {
 
 nlohmann::json array3(const std::array<double, 3>& v) {
   return nlohmann::json::array({v[0], v[1], v[2]});
-}
-
-double degrees(double radians) {
-  return radians * (180.0 / std::numbers::pi);
 }
 
 // "directions": edge, crest and wall of the four axis rays.
