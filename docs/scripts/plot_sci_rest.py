@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""The SCI crater from its end of growth to rest (docs/validation.md, "The crater comes to rest at the angle of
-repose"): the radius of the growth samples (data/validation/sci_creep_growth.csv, runs rest_*) and the wall
+"""The SCI crater from its end of growth to rest (docs/validation.md, "After the end of growth the wall relaxes
+towards the angle of repose"): the radius of the growth samples (data/validation/sci_creep_growth.csv, runs rest_*) and the wall
 slope of the snapshots (data/validation/sci_rest_walls.csv).
 
     /usr/bin/python3 docs/scripts/plot_sci_rest.py data/validation/sci_creep_growth.csv \\
@@ -21,6 +21,7 @@ LABELS = {
     "rest_dx0.5": ("dx_max = 0.5 m (sci.toml), f = 0.55", "C1", "--"),
     "rest_dx1.0_f0.8": ("dx_max = 1.0 m, f = 0.8", "C2", "-"),
     "rest_dx1.0_tensile_porosity": ("dx_max = 1.0 m, f = 0.55, tensile porosity", "C3", ":"),
+    "rest_dx1.0_mohr_coulomb": ("dx_max = 1.0 m, f = 0.55, Mohr-Coulomb yield (study build)", "C4", "-."),
 }
 
 
