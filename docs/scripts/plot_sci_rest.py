@@ -18,6 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 LABELS = {
     "rest_dx1.0": ("dx_max = 1.0 m, f = 0.55", "C0", "-"),
+    "rest_dx0.7": ("dx_max = 0.7 m, f = 0.55", "C5", "-"),
     "rest_dx0.5": ("dx_max = 0.5 m (sci.toml), f = 0.55", "C1", "--"),
     "rest_dx1.0_f0.8": ("dx_max = 1.0 m, f = 0.8", "C2", "-"),
     "rest_dx1.0_tensile_porosity": ("dx_max = 1.0 m, f = 0.55, tensile porosity", "C3", ":"),
