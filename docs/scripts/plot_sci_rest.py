@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The SCI crater from its end of growth to rest (docs/validation.md, "After the end of growth the wall relaxes
-towards the angle of repose"): the radius of the growth samples (data/validation/sci_creep_growth.csv, runs rest_*) and the wall
-slope of the snapshots (data/validation/sci_rest_walls.csv).
+towards the angle of repose"): the radius of the growth samples (data/validation/sci_creep_growth.csv, runs
+rest_*) and the wall slope of the snapshots (data/validation/sci_rest_walls.csv).
 
     /usr/bin/python3 docs/scripts/plot_sci_rest.py data/validation/sci_creep_growth.csv \\
         data/validation/sci_rest_walls.csv docs/figures/sci_rest.png
