@@ -116,6 +116,9 @@ void print_dry_run(const std::string& name, const std::string& setup, const sph:
       out["target_particles"] = impact->target_particles;
       out["projectile_particles"] = impact->projectile_particles;
       out["t_transition"] = impact->transition_time;
+      out["domain_radius"] = impact->domain_radius;
+      out["particle_spacing"] = impact->particle_spacing;
+      out["inner_spacing"] = impact->inner_spacing;
     }
     craterkit::cli::print_json(out);
     return;

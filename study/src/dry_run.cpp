@@ -60,8 +60,17 @@ std::vector<ParticleCount> count_particles(const Study& study, const std::filesy
     const auto dir = run_directory(plan.out, plan.runs[k].name);
     if (status.success()) {
       try {
-        counts[k].particles =
-            nlohmann::json::parse(read_file(dir / "dry_run.json")).at("particles").get<long long>();
+        const auto report = nlohmann::json::parse(read_file(dir / "dry_run.json"));
+        counts[k].particles = report.at("particles").get<long long>();
+        const auto size = [&](const char* key) {
+          return report.contains(key) && report[key].is_number()
+                     ? std::optional<double>(report[key].get<double>())
+                     : std::nullopt;
+        };
+        counts[k].domain_radius = size("domain_radius");
+        counts[k].particle_spacing = size("particle_spacing");
+        counts[k].inner_spacing = size("inner_spacing");
+        counts[k].end_time = size("end_time");
         return;
       } catch (const nlohmann::json::exception&) {
       }
@@ -116,6 +125,15 @@ std::string format_dry_run(const StudyPlan& plan, const std::vector<ParticleCoun
       }
       if (run.index < counts.size()) {
         const auto& c = counts[run.index];
+        if (!run.sized) {
+          const auto put = [&](const char* key, const std::optional<double>& v) {
+            if (v) row[key] = *v;
+          };
+          put("domain_radius", c.domain_radius);
+          put("particle_spacing", c.particle_spacing);
+          put("inner_spacing", c.inner_spacing);
+          put("end_time", c.end_time);
+        }
         row["particles"] = c.particles ? nlohmann::ordered_json(*c.particles) : nlohmann::ordered_json();
         if (!c.error.empty()) row["error"] = c.error;
       }
@@ -132,10 +150,18 @@ std::string format_dry_run(const StudyPlan& plan, const std::vector<ParticleCoun
     const auto& s = run.sizing;
     std::string count = "-";
     std::string error;
+    // Sizing off: the run's own sizes from its dry run, "(base)" where there is none (no counts, or a set-up
+    // that failed or is not an impact).
+    std::string own[4] = {"(base)", "(base)", "(base)", "(base)"};
     if (run.index < counts.size()) {
       const auto& c = counts[run.index];
       if (c.particles) count = std::to_string(*c.particles);
       error = c.error;
+      const std::optional<double> sizes[4] = {c.domain_radius, c.particle_spacing, c.inner_spacing,
+                                              c.end_time};
+      for (int k = 0; k < 4; ++k) {
+        if (sizes[k]) own[k] = fmt::format("{:.4g}", *sizes[k]);
+      }
     }
     if (run.sized) {
       text += fmt::format("{:>4}  {:<44} {:>9.4g} {:>9.4g} {:>9.4g} {:>9.4g} {:>9.4g} {:>10}\n", run.index,
@@ -143,7 +169,7 @@ std::string format_dry_run(const StudyPlan& plan, const std::vector<ParticleCoun
                           s.inner_spacing, s.end_time, count);
     } else {
       text += fmt::format("{:>4}  {:<44} {:>9.4g} {:>9} {:>9} {:>9} {:>9} {:>10}\n", run.index, run.name,
-                          s.predicted_crater_radius, "(base)", "(base)", "(base)", "(base)", count);
+                          s.predicted_crater_radius, own[0], own[1], own[2], own[3], count);
     }
     if (!error.empty()) text += "      set-up error: " + error + "\n";
   }

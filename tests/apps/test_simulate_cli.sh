@@ -25,6 +25,7 @@ assert d["projectile_particles"] == 8, d  # a quarter of the 32-particle sphere 
 assert 0 < d["fixed_particles"] < d["target_particles"], d
 assert abs(d["t_transition"] - 0.1) < 1e-12, d  # 10 R_dom / c = 10 x 15 m / 1500 m/s
 assert d["end_time"] == 500.0, d
+assert (d["domain_radius"], d["particle_spacing"], d["inner_spacing"]) == (15.0, 0.5, 0.028), d
 PYEOF
 [ -e "$WORK/run" ] && fail "simulate --dry-run created the output directory"
 

@@ -35,7 +35,15 @@ assert [r["name"] for r in runs] == ["impact_speed-50_cohesion-0", "impact_speed
                                      "impact_speed-60_cohesion-0", "impact_speed-60_cohesion-100"], runs
 assert all(r["particles"] == 536 for r in runs), runs
 assert runs[3]["axes"] == {"impact_speed": 60.0, "cohesion": 100.0}, runs
+# sizing off: each run's own sizes, from its dry run (tiny.toml's domain, spacing and end time)
+assert all(not r["sized"] and r["domain_radius"] == 5.0 and r["particle_spacing"] == 0.5 and r["end_time"] == 1.0
+           for r in runs), runs
 PYEOF
+"$CK" sweep "$WORK/study.toml" --out "$WORK/a/out" --dry-run >"$WORK/dry.txt" 2>"$WORK/err" ||
+  fail "text --dry-run exited $? ($(cat "$WORK/err"))"
+grep -q "(base)" "$WORK/dry.txt" && fail "text --dry-run shows (base) where the runs' own sizes are known: $(cat "$WORK/dry.txt")"
+grep -Eq "impact_speed-60_cohesion-100 +[0-9.e+-]+ +5 +0.5 " "$WORK/dry.txt" ||
+  fail "text --dry-run lacks a run's own R_dom and dx_max: $(cat "$WORK/dry.txt")"
 [ -e "$WORK/a" ] && fail "--dry-run created the output folder"
 
 # --- The sweep: every run, radii.csv from the runs' crater.json.

@@ -1,8 +1,9 @@
 #pragma once
 // `craterkit sweep --dry-run`: the plan's runs with their axis values and sizes, and each run's particle
 // count from `craterkit simulate CONFIG --dry-run --json` (which builds the set-up, so a run whose set-up
-// fails shows its error here). Nothing is written into the output folder: the configurations are planned
-// into a temporary folder for the counts.
+// fails shows its error here). With the sizing rule off the sizes are the run's own, from the same dry run
+// (the base configuration with the run's overrides, e.g. a dotted "impact.domain_radius"). Nothing is written
+// into the output folder: the configurations are planned into a temporary folder for the counts.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,6 +15,8 @@ namespace craterkit::study {
 
 struct ParticleCount {
   std::optional<long long> particles;
+  // What the run's dry run reports of an impact set-up (m, m, m, s); empty for other set-ups.
+  std::optional<double> domain_radius, particle_spacing, inner_spacing, end_time;
   std::string error;  // the set-up's error when it failed
 };
 
