@@ -15,7 +15,8 @@ namespace craterkit::study {
 
 struct ParticleCount {
   std::optional<long long> particles;
-  // What the run's dry run reports of an impact set-up (m, m, m, s); empty for other set-ups.
+  // As the run's dry run reports them: an impact's domain radius and outer and inner spacing (m), the end
+  // time (s); empty where it reports none.
   std::optional<double> domain_radius, particle_spacing, inner_spacing, end_time;
   std::string error;  // the set-up's error when it failed
 };
